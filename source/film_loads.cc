@@ -15,6 +15,7 @@ nlohmann::json FilmLoads::to_json() const
           {"min_film", min_film},
           {"max_pressure", max_pressure},
           {"min_pressure", min_pressure},
-          {"cavitated_fraction", cavitated_fraction}};
+          {"cavitated_fraction", cavitated_fraction},
+          {"area", area}};
 }
 } // namespace sealfe

@@ -23,8 +23,9 @@ void FilmThickness::declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Wave number", "0", Double(0), "Number of waves n_w per revolution.");
   prm.declare_entry("Wave phase", "0", Double(),
                     "Angle theta_w (rad) of a waviness crest: A_w cos(n_w (theta - theta_w)).");
-  prm.declare_entry("Axial offset", "0", Double(),
-                    "Axial displacement z (m) of the flexible ring from the set point (adds to h).");
+  prm.declare_entry(
+      "Axial offset", "0", Double(),
+      "Axial displacement z (m) of the flexible ring from the set point (adds to h).");
   prm.leave_subsection();
 
   prm.enter_subsection("Squeeze motion");

@@ -7,11 +7,10 @@
 namespace sealfe
 {
 /// Loads of the film on the flexibly mounted ring.
-///   force_z = int (p - p_ref) dA, moment_x = int (p - p_ref) y dA, moment_y = -int (p - p_ref) x dA,
-///   moment_restoring = -int (p - p_ref) r cos(theta - psi) dA,
-///   moment_transverse = int (p - p_ref) r sin(theta - psi) dA,
-///   leakage_inner/outer: volume flow (m^3/s) through r = ri / r = ro, positive out of the dam,
-///   friction_torque: viscous torque resisting the rotor (N m).
+///   force_z = int (p - p_ref) dA, moment_x = int (p - p_ref) y dA, moment_y = -int (p - p_ref) x
+///   dA, moment_restoring = -int (p - p_ref) r cos(theta - psi) dA, moment_transverse = int (p -
+///   p_ref) r sin(theta - psi) dA, leakage_inner/outer: volume flow (m^3/s) through r = ri / r =
+///   ro, positive out of the dam, friction_torque: viscous torque resisting the rotor (N m).
 struct FilmLoads
 {
   double force_z = 0;
@@ -26,6 +25,7 @@ struct FilmLoads
   double max_pressure = 0;
   double min_pressure = 0;
   double cavitated_fraction = 0;
+  double area = 0; ///< area of the dam as integrated (m^2): the discrete domain for the FE model
 
   nlohmann::json to_json() const;
 };

@@ -68,19 +68,19 @@ public:
   /// Set gamma, psi from the tilt vector (tilt_x, tilt_y) of the flexible ring.
   void set_tilt_vector(const double tilt_x, const double tilt_y);
 
-  double inner_radius = 0.0355;  // m
-  double outer_radius = 0.0408;  // m
-  double clearance = 1e-6;       // m, C0
-  double coning = 1e-3;          // rad, beta
-  double tilt = 0;               // rad, gamma
-  double tilt_angle = 0;         // rad, psi
-  double wave_amplitude = 0;     // m
-  double wave_number = 0;        // waves per revolution
-  double wave_phase = 0;         // rad
-  double axial_offset = 0;       // m, z of the flexible ring about the set point
-  double axial_velocity = 0;     // m/s
-  double tilt_rate_x = 0;        // rad/s
-  double tilt_rate_y = 0;        // rad/s
+  double inner_radius = 0.0355; // m
+  double outer_radius = 0.0408; // m
+  double clearance = 1e-6;      // m, C0
+  double coning = 1e-3;         // rad, beta
+  double tilt = 0;              // rad, gamma
+  double tilt_angle = 0;        // rad, psi
+  double wave_amplitude = 0;    // m
+  double wave_number = 0;       // waves per revolution
+  double wave_phase = 0;        // rad
+  double axial_offset = 0;      // m, z of the flexible ring about the set point
+  double axial_velocity = 0;    // m/s
+  double tilt_rate_x = 0;       // rad/s
+  double tilt_rate_y = 0;       // rad/s
 };
 
 } // namespace sealfe

@@ -17,11 +17,11 @@ struct OperatingConditions
 
   double mean_speed() const { return 0.5 * (rotor_speed + stator_speed); }
 
-  double inner_pressure = 0;   // Pa
-  double outer_pressure = 4e5; // Pa
-  double viscosity = 1.2e-3;   // Pa s
-  double rotor_speed = 1000;   // rad/s
-  double stator_speed = 0;     // rad/s
+  double inner_pressure = 0;     // Pa
+  double outer_pressure = 4e5;   // Pa
+  double viscosity = 1.2e-3;     // Pa s
+  double rotor_speed = 1000;     // rad/s
+  double stator_speed = 0;       // rad/s
   double reference_pressure = 0; // Pa, p_ref subtracted in the loads
 };
 

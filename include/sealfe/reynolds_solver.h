@@ -1,0 +1,108 @@
+// ReynoldsSolver: the full 2D finite-element Reynolds equation on the annular dam (level 2 of
+// design.md), distributed over MPI ranks, with loads, consistent leakage and VTU output.
+#pragma once
+
+#include <sealfe/annulus_mesh.h>
+#include <sealfe/film_loads.h>
+#include <sealfe/film_thickness.h>
+#include <sealfe/operating_conditions.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace sealfe
+{
+/// Solves, for the pressure p(x, y) on ri <= r <= ro (Cartesian coordinates of the dam plane),
+///
+///   div( h^3/(12 mu) grad p ) = div( h u_mean ) + dh/dt (+ f),   u_mean = (w1 + w2)/2 * r e_theta
+///
+/// with p = pi on r = ri and p = po on r = ro, by continuous Q_k elements on a curved (MappingQ_k)
+/// mesh. The equation is scaled by 12 mu / C0^3 so that the matrix is O(1) and solver tolerances
+/// are relative. Leakage is the consistent (residual) boundary flux, so the two leakages balance
+/// to solver tolerance. Reads subsection "Discretization" (with AnnulusMesh).
+class ReynoldsSolver
+{
+public:
+  enum class LinearSolver
+  {
+    automatic,
+    direct,
+    cg_amg
+  };
+
+  explicit ReynoldsSolver(MPI_Comm comm);
+
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+
+  /// Set up, assemble and solve on the mesh `coarsening` levels coarser than asked for, and return
+  /// the loads. Throws std::runtime_error on bad geometry or a linear solver failure.
+  FilmLoads run(const FilmThickness &film, const OperatingConditions &conditions,
+                const unsigned int coarsening = 0);
+
+  /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
+  /// into `directory`; returns the PVD file name.
+  std::string write_output(const std::string &directory) const;
+
+  /// L2 norm of (p_h - exact) over the dam (for convergence tests).
+  double l2_error(const dealii::Function<2> &exact) const;
+
+  dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
+  unsigned int degree() const { return polynomial_degree; }
+  const AnnulusMesh &mesh() const { return mesh_parameters; }
+  AnnulusMesh &mesh() { return mesh_parameters; }
+  bool error_estimate_enabled() const { return estimate_error; }
+  unsigned int linear_iterations() const { return last_iterations; }
+  /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
+  std::map<std::string, double> stage_times() const;
+
+  /// Optional manufactured-solution hooks (tests): Dirichlet data on both circles and an extra
+  /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
+  std::function<double(const dealii::Point<2> &)> boundary_pressure;
+  std::function<double(const dealii::Point<2> &)> source;
+
+  unsigned int polynomial_degree = 2;
+  LinearSolver linear_solver = LinearSolver::automatic;
+  double solver_tolerance = 1e-12;
+  bool estimate_error = true;
+
+private:
+  void setup_system(const unsigned int coarsening);
+  void assemble_system();
+  void solve();
+  FilmLoads compute_loads() const;
+
+  MPI_Comm mpi_communicator;
+  AnnulusMesh mesh_parameters;
+  FilmThickness film;
+  OperatingConditions conditions;
+
+  dealii::parallel::distributed::Triangulation<2> triangulation;
+  std::unique_ptr<dealii::FE_Q<2>> fe;
+  std::unique_ptr<dealii::MappingQ<2>> mapping;
+  dealii::DoFHandler<2> dof_handler;
+  dealii::IndexSet locally_owned_dofs, locally_relevant_dofs;
+  dealii::AffineConstraints<double> constraints;
+  dealii::TrilinosWrappers::SparseMatrix system_matrix;
+  dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution, system_rhs;
+
+  double equation_scale = 1; // 12 mu / C0^3
+  unsigned int last_iterations = 0;
+  mutable dealii::TimerOutput timer;
+};
+
+} // namespace sealfe

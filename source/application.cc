@@ -1,0 +1,289 @@
+#include <sealfe/application.h>
+#include <sealfe/film_thickness.h>
+#include <sealfe/operating_conditions.h>
+#include <sealfe/output.h>
+#include <sealfe/reynolds_solver.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace sealfe
+{
+using namespace dealii;
+
+namespace
+{
+/// One sub-command: its parameters and what it does. `distributed` sub-commands run on every MPI
+/// rank (finite-element solves); the others run on rank 0 only.
+struct SubCommand
+{
+  std::string name;
+  std::string purpose;
+  bool face_seal; // declares the shared Geometry / Operating conditions subsections
+  bool distributed;
+  std::function<void(ParameterHandler &)> declare;
+  std::function<nlohmann::json(ParameterHandler &, const std::string &, MPI_Comm)> run;
+};
+
+std::vector<SubCommand> sub_commands()
+{
+  return {
+      {"solve", "pressure field, loads, leakage -> summary.json, VTU/PVD", true, true,
+       solve::declare_parameters, solve::run},
+  };
+}
+
+void declare_common(ParameterHandler &prm, const SubCommand &command)
+{
+  prm.declare_entry("Output directory", "sealfe-output", Patterns::Anything(),
+                    "Directory for summary.json, used_parameters.prm and the field/table files "
+                    "(created if needed).");
+  if (command.face_seal)
+  {
+    FilmThickness::declare_parameters(prm);
+    OperatingConditions::declare_parameters(prm);
+  }
+  command.declare(prm);
+}
+
+/// deal.II exceptions carry a multi-line report; keep the "additional information" on one line.
+std::string one_line(const std::exception &e)
+{
+  std::string text;
+  if (const auto *d = dynamic_cast<const ExceptionBase *>(&e))
+  {
+    std::ostringstream s;
+    d->print_info(s);
+    text = s.str();
+  }
+  else
+    text = e.what();
+  std::string line;
+  bool space = false;
+  for (const char c : text)
+  {
+    if (std::isspace(static_cast<unsigned char>(c)))
+      space = !line.empty();
+    else
+    {
+      if (space)
+        line += ' ';
+      line += c;
+      space = false;
+    }
+  }
+  return line;
+}
+
+void print_usage(std::ostream &out)
+{
+  out << "usage: sealfe <sub-command> [file.prm]\n"
+         "       sealfe --print-parameters [sub-command]\n\nsub-commands:\n";
+  for (const auto &c : sub_commands())
+    out << "  " << std::left << std::setw(14) << c.name << c.purpose << "\n";
+}
+} // namespace
+
+int run_application(int argc, char **argv)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try
+  {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h")
+    {
+      if (root)
+        print_usage(args.empty() ? std::cerr : std::cout);
+      return args.empty() ? 2 : 0;
+    }
+    const auto commands = sub_commands();
+    auto find = [&](const std::string &name) -> const SubCommand &
+    {
+      for (const auto &c : commands)
+        if (c.name == name)
+          return c;
+      throw std::runtime_error("unknown sub-command '" + name + "' (see sealfe --help)");
+    };
+
+    if (args[0] == "--print-parameters")
+    {
+      const SubCommand &command = find(args.size() > 1 ? args[1] : "solve");
+      ParameterHandler prm;
+      declare_common(prm, command);
+      if (root)
+        prm.print_parameters(std::cout, ParameterHandler::PRM);
+      return 0;
+    }
+
+    const SubCommand &command = find(args[0]);
+    if (args.size() > 2)
+      throw std::runtime_error("too many arguments (usage: sealfe " + command.name +
+                               " [file.prm])");
+    const auto start = std::chrono::steady_clock::now();
+    ParameterHandler prm;
+    declare_common(prm, command);
+    if (args.size() == 2)
+    {
+      const std::string &file = args[1];
+      std::ifstream probe(file);
+      if (!probe)
+        throw std::runtime_error("parameter file '" + file + "' is missing or unreadable");
+      try
+      {
+        prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);
+      }
+      catch (std::exception &e)
+      {
+        throw std::runtime_error("parameter file '" + file + "': " + one_line(e));
+      }
+    }
+    const std::string directory = prm.get("Output directory");
+
+    nlohmann::json summary;
+    if (command.distributed || root)
+      summary = command.run(prm, directory, comm);
+    if (root)
+    {
+      output::make_directory(directory);
+      summary["sub_command"] = command.name;
+      summary["mpi_ranks"] = Utilities::MPI::n_mpi_processes(comm);
+      summary["wall_time"] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      output::write_used_parameters(directory, prm);
+      output::write_summary(directory, summary);
+      std::cout << "sealfe " << command.name << ": wrote " << directory << "/summary.json and "
+                << directory << "/used_parameters.prm\n";
+    }
+    return 0;
+  }
+  catch (std::exception &e)
+  {
+    if (root)
+      std::cerr << "sealfe: error: " << one_line(e) << std::endl;
+    return 1;
+  }
+}
+
+// ------------------------------------------------------------------------------------------------
+// sealfe solve
+
+namespace solve
+{
+void declare_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Film model");
+  prm.declare_entry("Model", "finite element", Patterns::Selection("finite element|narrow seal"),
+                    "finite element: full 2D Reynolds solve on the annulus (level 2). narrow "
+                    "seal: the closed-form narrow-seal pressure (level 0, ri/ro -> 1).");
+  prm.leave_subsection();
+  prm.enter_subsection("Output");
+  prm.declare_entry("Write fields", "true", Patterns::Bool(),
+                    "Write pressure, film thickness and volume flux as VTU/PVD (FE model).");
+  prm.leave_subsection();
+  ReynoldsSolver::declare_parameters(prm);
+}
+
+nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm comm)
+{
+  FilmThickness film;
+  OperatingConditions conditions;
+  film.parse_parameters(prm);
+  conditions.parse_parameters(prm);
+  film.validate();
+  conditions.validate();
+  prm.enter_subsection("Film model");
+  const std::string model = prm.get("Model");
+  prm.leave_subsection();
+  prm.enter_subsection("Output");
+  const bool write_fields = prm.get_bool("Write fields");
+  prm.leave_subsection();
+
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  nlohmann::json summary;
+  if (model == "narrow seal")
+    throw std::runtime_error("Film model: 'narrow seal' is not available yet");
+
+  ReynoldsSolver solver(comm);
+  solver.parse_parameters(prm);
+  // Inputs are checked before any mesh file is read or output is touched.
+  const FilmLoads loads = solver.run(film, conditions);
+  summary = loads.to_json();
+  summary["model"] = "finite element";
+  summary["dofs"] = solver.n_dofs();
+  summary["polynomial_degree"] = solver.degree();
+  summary["linear_iterations"] = solver.linear_iterations();
+  summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
+  nlohmann::json timings = solver.stage_times();
+
+  // Error estimate: a second solve on a mesh twice as coarse. Loads of degree-k elements converge
+  // at least like h^(k+1) (the L2 rate of p; linear functionals often converge faster, which
+  // only makes the estimate more conservative), so the error of the fine result is estimated as
+  // |L_h - L_2h| / (2^(k+1) - 1).
+  nlohmann::json estimate;
+  if (solver.error_estimate_enabled() && solver.mesh().can_coarsen(1))
+  {
+    ReynoldsSolver coarse(comm);
+    coarse.parse_parameters(prm);
+    const FilmLoads c = coarse.run(film, conditions, 1);
+    const double factor = 1.0 / (std::pow(2.0, solver.degree() + 1) - 1);
+    auto e = [&](double fine, double coarse_value)
+    { return std::abs(fine - coarse_value) * factor; };
+    estimate = {{"force_z", e(loads.force_z, c.force_z)},
+                {"moment_x", e(loads.moment_x, c.moment_x)},
+                {"moment_y", e(loads.moment_y, c.moment_y)},
+                {"moment_restoring", e(loads.moment_restoring, c.moment_restoring)},
+                {"moment_transverse", e(loads.moment_transverse, c.moment_transverse)},
+                {"leakage_inner", e(loads.leakage_inner, c.leakage_inner)},
+                {"leakage_outer", e(loads.leakage_outer, c.leakage_outer)},
+                {"friction_torque", e(loads.friction_torque, c.friction_torque)},
+                {"method", "difference to a 2x coarser mesh / (2^(k+1) - 1)"},
+                {"coarse_dofs", coarse.n_dofs()}};
+    timings["error_estimate"] = 0.0;
+    for (const auto &[k, v] : coarse.stage_times())
+      timings["error_estimate"] = timings["error_estimate"].get<double>() + v;
+  }
+  else
+    estimate = {{"method", "none: disabled or the mesh cannot be coarsened"}};
+  summary["error_estimate"] = estimate;
+
+  if (write_fields)
+  {
+    if (root)
+      output::make_directory(directory);
+    MPI_Barrier(comm);
+    Timer t;
+    summary["fields"] = solver.write_output(directory);
+    timings["output"] = t.wall_time();
+  }
+  summary["stage_wall_time"] = timings;
+
+  if (root)
+  {
+    std::cout << std::setprecision(6) << "sealfe solve (finite element, " << solver.n_dofs()
+              << " dofs, degree " << solver.degree() << ")\n"
+              << "  force_z            " << loads.force_z << " N\n"
+              << "  moment_x, moment_y " << loads.moment_x << ", " << loads.moment_y << " N m\n"
+              << "  leakage in / out   " << loads.leakage_inner << ", " << loads.leakage_outer
+              << " m^3/s\n"
+              << "  friction torque    " << loads.friction_torque << " N m\n"
+              << "  min film           " << loads.min_film << " m\n";
+    if (write_fields)
+      std::cout << "  fields             " << directory << "/solution.pvd\n";
+  }
+  return summary;
+}
+} // namespace solve
+
+} // namespace sealfe
