@@ -42,7 +42,10 @@ def label(key):
     if configuration == "straight":
         return "straight"
     text = {"stiffness": "max K", "stiffness per leakage": "max K/M"}[objective]
+    if configuration == "tapered":
+        text = "tapered, " + text
     if configuration == "stepped":
+        text = "stepped, " + text
         text += ", γ free" if bound >= 1 else f", γ ≤ {bound:g}"
     return text
 
@@ -57,6 +60,7 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        import matplotlib.ticker
     except ImportError:
         print("plot_annular.py: matplotlib is not available for " + sys.executable,
               file=sys.stderr)
@@ -69,7 +73,7 @@ def main():
         for key, rows in sorted(groups.items()):
             if key[0] not in configurations and not (straight and key[0] == "straight"):
                 continue
-            colour = "k" if key[0] == "straight" else ("C0" if key[2] >= 1 else "C1")
+            colour = {"straight": "k", "tapered": "C2"}.get(key[0], "C0" if key[2] >= 1 else "C1")
             ax.plot([r["lambda"] for r in rows], [r[column] for r in rows],
                     styles[key[1]], color=colour, label=label(key))
         ax.set_xscale("log")
@@ -97,6 +101,8 @@ def main():
     plot(axes[1, 3], ("stepped",), "leakage_dimensionless", "M̄ = M / (π D C₂ √((p₀ − p_L) ρ))",
          "Flow, stepped and straight seals (Fig. 8)", straight=True)
     axes[0, 3].set_yscale("log")
+    axes[0, 3].yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+    axes[0, 3].yaxis.set_minor_formatter(matplotlib.ticker.ScalarFormatter())
     fig.suptitle("sealfe annular: optimum high-stiffness seals (Fleming, NASA TM X-73654)")
     fig.tight_layout()
     fig.savefig(out, dpi=110)

@@ -247,6 +247,45 @@ TEST(AnnularSeal, StraightSealIsBlacksResult)
   }
 }
 
+// Straight seals with the two generalisations: n = int Nhat = u + v/2, d = Nhat(1) = u + v
+// (the gap is eta everywhere), so d(n/d)/deta = (u' v - u v') / (2 (u + v)^2).
+
+TEST(AnnularSeal, StraightSealWithLocalRoughFriction)
+{
+  // f(h) = f2 (h/C2)^-s around the eccentric gap: u = 1/(2 eta^2), v = Lambda eta^-(3+s),
+  // u' v - u v' = (1 + s) u v / eta, so Kbar = pi (1 + s) Lambda / (2 (1 + 2 Lambda)^2): Black's
+  // result times 1 + s. The concentric leakage is unchanged (f = f2 at h = C2).
+  const double s = fully_rough_friction_exponent;
+  for (const double lambda : {0.05, 2.4, 30.0})
+  {
+    DimensionlessSeal d;
+    d.geometry = Geometry::straight;
+    d.lambda = lambda;
+    d.friction_exponent = s;
+    const auto c = dimensionless_coefficients(d);
+    EXPECT_NEAR(c.stiffness, pi * (1 + s) * lambda / (2 * std::pow(1 + 2 * lambda, 2)), 1e-14);
+    EXPECT_NEAR(c.leakage, std::sqrt(2 / (1 + 2 * lambda)), 1e-14);
+  }
+}
+
+TEST(AnnularSeal, StraightSealWithEntranceLoss)
+{
+  // entrance loss xi: u = (1 + xi)/(2 eta^2), v = Lambda / eta^3, u' v - u v' = u v / eta, so
+  // Kbar = pi (1 + xi) Lambda / (2 (1 + xi + 2 Lambda)^2) and Mbar = sqrt(2 / (1 + xi + 2 Lambda)).
+  for (const double xi : {0.0, 0.3, 1.0})
+    for (const double lambda : {0.1, 2.4})
+    {
+      DimensionlessSeal d;
+      d.geometry = Geometry::straight;
+      d.lambda = lambda;
+      d.entrance_loss = xi;
+      const auto c = dimensionless_coefficients(d);
+      EXPECT_NEAR(c.stiffness, pi * (1 + xi) * lambda / (2 * std::pow(1 + xi + 2 * lambda, 2)),
+                  1e-14);
+      EXPECT_NEAR(c.leakage, std::sqrt(2 / (1 + xi + 2 * lambda)), 1e-14);
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // The concentric pressure profile against Eq. 8 and Eq. 11 (with the OCR typo p_1 -> p_L in 11b).
 
