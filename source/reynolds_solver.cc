@@ -34,7 +34,7 @@ constexpr types::global_dof_index direct_solver_limit = 150000;
 
 ReynoldsSolver::ReynoldsSolver(MPI_Comm comm)
     : mpi_communicator(comm), triangulation(comm), dof_handler(triangulation),
-      timer(comm, std::cerr, TimerOutput::never, TimerOutput::wall_times)
+      timer(std::cerr, TimerOutput::never, TimerOutput::wall_times)
 {
 }
 

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The same solve on 1 and 2 MPI ranks must give the same loads (to 1e-9 relative).
+# Usage: compare_mpi.sh path/to/sealfe
+set -euo pipefail
+sealfe=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+for solver in direct cg-amg; do
+  for n in 1 2; do
+    cat > "$work/case.prm" <<PRM
+set Output directory = $work/np$n-$solver
+subsection Geometry
+  set Tilt = 1.2e-5
+  set Tilt angle = 0.7
+  set Wave amplitude = 2e-7
+  set Wave number = 3
+end
+subsection Discretization
+  set Linear solver = $solver
+  set Radial cells = 8
+  set Circumferential cells = 64
+  set Global refinements = 1
+end
+PRM
+    mpirun -np $n "$sealfe" solve "$work/case.prm" > /dev/null
+  done
+  python3 - "$work/np1-$solver/summary.json" "$work/np2-$solver/summary.json" "$solver" <<'PY'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+keys = ["force_z", "moment_x", "moment_y", "moment_restoring", "moment_transverse",
+        "leakage_inner", "leakage_outer", "friction_torque", "max_pressure", "min_pressure"]
+assert b["mpi_ranks"] == 2 and a["mpi_ranks"] == 1
+worst = 0.0
+for k in keys:
+    scale = max(abs(a[k]), 1e-300)
+    if k.startswith("moment"):
+        scale = max(scale, 1e-9 * abs(a["force_z"]) * 0.04)
+    if k.startswith("leakage"):
+        scale = max(abs(a["leakage_inner"]), abs(a["leakage_outer"]))
+    worst = max(worst, abs(a[k] - b[k]) / scale)
+print(f"{sys.argv[3]}: max relative difference 1 vs 2 ranks = {worst:.2e}")
+sys.exit(0 if worst < 1e-9 else 1)
+PY
+done
