@@ -1,5 +1,7 @@
+#include <sealfe/annular_seal.h>
 #include <sealfe/application.h>
 #include <sealfe/film_thickness.h>
+#include <sealfe/narrow_seal.h>
 #include <sealfe/operating_conditions.h>
 #include <sealfe/output.h>
 #include <sealfe/reynolds_solver.h>
@@ -41,6 +43,13 @@ std::vector<SubCommand> sub_commands()
   return {
       {"solve", "pressure field, loads, leakage -> summary.json, VTU/PVD", true, true,
        solve::declare_parameters, solve::run},
+      {"annular", "annular (radial-clearance) seal stiffness, leakage, optimum -> JSON, CSV", false,
+       false, annular::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       {
+         output::make_directory(dir);
+         return annular::run(prm, dir);
+       }},
   };
 }
 
@@ -193,6 +202,7 @@ void declare_parameters(ParameterHandler &prm)
                     "Write pressure, film thickness and volume flux as VTU/PVD (FE model).");
   prm.leave_subsection();
   ReynoldsSolver::declare_parameters(prm);
+  NarrowSealQuadrature::declare_parameters(prm);
 }
 
 nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm comm)
@@ -213,7 +223,31 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
   nlohmann::json summary;
   if (model == "narrow seal")
-    throw std::runtime_error("Film model: 'narrow seal' is not available yet");
+  {
+    CavitationSettings cavitation;
+    cavitation.parse_parameters(prm);
+    NarrowSealQuadrature quadrature;
+    quadrature.parse_parameters(prm);
+    Timer t;
+    const FilmLoads loads =
+        compute(film, conditions, cavitation.model, quadrature, cavitation.pressure);
+    summary = loads.to_json();
+    summary["model"] = "narrow seal";
+    summary["dofs"] = 0;
+    summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
+    summary["error_estimate"] = {
+        {"method", "none: closed-form model; its modelling error against the full Reynolds "
+                   "equation grows like (1 - ri/ro)^2 (doc/validation.md)"}};
+    summary["stage_wall_time"] = {{"narrow_seal", t.wall_time()}};
+    if (root)
+      std::cout << std::setprecision(6) << "sealfe solve (narrow seal)\n"
+                << "  force_z            " << loads.force_z << " N\n"
+                << "  moment_x, moment_y " << loads.moment_x << ", " << loads.moment_y << " N m\n"
+                << "  leakage in / out   " << loads.leakage_inner << ", " << loads.leakage_outer
+                << " m^3/s\n"
+                << "  friction torque    " << loads.friction_torque << " N m\n";
+    return summary;
+  }
 
   ReynoldsSolver solver(comm);
   solver.parse_parameters(prm);

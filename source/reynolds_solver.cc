@@ -41,6 +41,7 @@ ReynoldsSolver::ReynoldsSolver(MPI_Comm comm)
 void ReynoldsSolver::declare_parameters(ParameterHandler &prm)
 {
   AnnulusMesh::declare_parameters(prm);
+  CavitationSettings::declare_parameters(prm);
   prm.enter_subsection("Discretization");
   prm.declare_entry("Polynomial degree", "2", Patterns::Integer(1, 6),
                     "Degree k of the continuous Lagrange elements (and of the curved mapping).");
@@ -59,6 +60,7 @@ void ReynoldsSolver::declare_parameters(ParameterHandler &prm)
 void ReynoldsSolver::parse_parameters(ParameterHandler &prm)
 {
   mesh_parameters.parse_parameters(prm);
+  cavitation.parse_parameters(prm);
   prm.enter_subsection("Discretization");
   polynomial_degree = prm.get_integer("Polynomial degree");
   const std::string s = prm.get("Linear solver");
@@ -236,10 +238,12 @@ FilmLoads ReynoldsSolver::compute_loads() const
   const double mu = conditions.viscosity, mean_speed = conditions.mean_speed();
   const double relative_speed = conditions.rotor_speed - conditions.stator_speed;
   const double p_ref = conditions.reference_pressure;
+  const bool clip = cavitation.model == Cavitation::half_sommerfeld;
+  const double p_cav = cavitation.pressure;
   const double cpsi = std::cos(film.tilt_angle), spsi = std::sin(film.tilt_angle);
 
-  // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area
-  std::vector<double> sum(9, 0.0);
+  // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area, cavitated area
+  std::vector<double> sum(10, 0.0);
   double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
   Vector<double> local_residual(dofs_per_cell);
 
@@ -257,7 +261,11 @@ FilmLoads ReynoldsSolver::compute_loads() const
         const double r = x.norm(), theta = std::atan2(x[1], x[0]);
         const double h = film.value(r, theta);
         const double JxW = fe_values.JxW(q);
-        const double dp = p[q] - p_ref;
+        // Half-Sommerfeld: sub-cavity pressures are replaced by p_cav in the loads.
+        const bool cavitated = clip && p[q] < p_cav;
+        const double dp = (cavitated ? p_cav : p[q]) - p_ref;
+        if (cavitated)
+          sum[9] += JxW;
         sum[0] += dp * JxW;
         sum[8] += JxW;
         sum[1] += dp * x[1] * JxW;
@@ -316,7 +324,7 @@ FilmLoads ReynoldsSolver::compute_loads() const
   loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
   loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
   loads.min_film = film.minimum().value;
-  loads.cavitated_fraction = 0;
+  loads.cavitated_fraction = total[9] / total[8];
   return loads;
 }
 

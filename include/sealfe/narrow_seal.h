@@ -3,6 +3,7 @@
 // Etsion's (1977) closed forms for the force and moments of a tilted flat seal.
 #pragma once
 
+#include <sealfe/cavitation.h>
 #include <sealfe/film_loads.h>
 #include <sealfe/film_thickness.h>
 #include <sealfe/operating_conditions.h>
@@ -13,14 +14,7 @@
 
 namespace sealfe
 {
-/// How the narrow-seal model treats sub-cavity-pressure regions. `none`: full film, p may fall
-/// below p_cav. `half_sommerfeld`: the full-film pressure is clipped, p < p_cav -> p_cav (what
-/// Etsion's and Varney & Green's closed forms use; not mass conserving).
-enum class Cavitation
-{
-  none,
-  half_sommerfeld
-};
+// The Cavitation enum (none | half_sommerfeld) lives in cavitation.h.
 
 /// How radii outside the film thickness enter the loads.
 ///  kept:      the definitions of film_loads.h, dA = r dr dtheta, moment arms r, speed omega r.

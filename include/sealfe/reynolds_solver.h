@@ -3,6 +3,7 @@
 #pragma once
 
 #include <sealfe/annulus_mesh.h>
+#include <sealfe/cavitation.h>
 #include <sealfe/film_loads.h>
 #include <sealfe/film_thickness.h>
 #include <sealfe/operating_conditions.h>
@@ -74,6 +75,10 @@ public:
   /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
   std::function<double(const dealii::Point<2> &)> boundary_pressure;
   std::function<double(const dealii::Point<2> &)> source;
+
+  /// Cavitation treatment of the loads: none (full film) or half-Sommerfeld (the full-film
+  /// pressure clipped at p_cav when integrating force, moments and friction).
+  CavitationSettings cavitation;
 
   unsigned int polynomial_degree = 2;
   LinearSolver linear_solver = LinearSolver::automatic;
