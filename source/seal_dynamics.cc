@@ -4,6 +4,8 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/sundials/arkode.h>
 
+#include <arkode/arkode_arkstep.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -762,6 +764,9 @@ AngularSealDynamics::integrate(const double rotor_speed, const double stator_spe
       x[i] = sol[i].real();
     return 0;
   };
+
+  // one call may have to cover many forcing periods: lift SUNDIALS' default of 500 steps
+  ode.custom_setup = [](void *arkode_mem) { ARKStepSetMaxNumSteps(arkode_mem, 10000000); };
 
   std::vector<TimeSample> samples;
   auto record = [&](const double t, const Vec &y)
