@@ -624,6 +624,8 @@ TiltLoads loads(const FilmThickness &film, const OperatingConditions &conditions
   const double ro = film.outer_radius, Ri = film.inner_radius / ro;
   TiltLoads out;
   out.eps = film.tilt * ro / C;
+  if (out.eps > 1 && out.eps <= 1 + 1e-12) // touch-down set up as gamma = C/ro: round-off only
+    out.eps = 1;
   if (!(C > 0) || !(out.eps <= 1))
   {
     std::ostringstream s;

@@ -406,3 +406,26 @@ TEST(EtsionTableI, PrintedEquationsCarryTypos)
   EXPECT_NEAR(eq52(+1), etsion::transverse_moment(e, Ri), 1e-9 * tMz);
   EXPECT_LT(eq52(-1), 0.0); // the printed sign gives a negative (wrong-way) transverse moment
 }
+
+// Etsion's worked example (p. 19): ro = 5 cm, ri/ro = 0.9, C = 0.0025 cm, 1000 rpm, full film,
+// eps = 1: "the hydrodynamic transverse moment ... is 536 N-cm". With the listed viscosity
+// 1.72e-3 Pa s the closed form gives 542.0 N cm (+1.1%); 536 N cm is what mu = 1.70e-3 Pa s gives
+// (535.7), so the example was evidently computed with 1.70e-3. Both are checked to the printed
+// precision (half a N cm).
+TEST(EtsionTableI, WorkedExampleTransverseMoment)
+{
+  FilmThickness film;
+  film.outer_radius = 0.05;
+  film.inner_radius = 0.045;
+  film.clearance = 0.0025e-2;
+  film.coning = 0;
+  film.tilt = film.clearance / film.outer_radius; // eps = 1 (closed forms only: touch-down)
+  OperatingConditions oc;
+  oc.rotor_speed = 1000 * 2 * M_PI / 60;
+  oc.stator_speed = 0;
+  oc.viscosity = 1.70e-3;
+  const double M = etsion::loads(film, oc, Cavitation::none).moment_transverse * 100; // N cm
+  EXPECT_NEAR(M, 536, 0.5);
+  oc.viscosity = 1.72e-3;
+  EXPECT_NEAR(etsion::loads(film, oc, Cavitation::none).moment_transverse * 100, 542.0, 0.05);
+}
