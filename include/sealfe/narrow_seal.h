@@ -39,8 +39,8 @@ struct NarrowSealQuadrature
   Curvature curvature = Curvature::kept;
 
   /// Subsection "Narrow seal": "Radial quadrature points", "Angular quadrature points",
-  /// "Curvature in loads" (kept | neglected). Optional: the defaults are accurate to ~1e-10
-  /// relative for tilts up to eps = 0.95 (tests/validation/narrow_seal_models.cc).
+  /// "Curvature in loads" (kept | neglected). Optional: the defaults are accurate to 5e-10
+  /// relative for tilts up to eps = 0.99 (4e-11 up to eps = 0.9; doc/narrow_seal.md).
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
 };
@@ -101,12 +101,14 @@ public:
   double source(double theta) const;
 
   /// Angles in [0, 2 pi) where a half-Sommerfeld cavity appears or disappears on the radial lines
-  /// (sign changes of min_r (p - p_cav) / ((ro - r)(r - ri)), found on `samples` uniform angles
+  /// (sign changes of min_r h^2 (p - p_cav) / ((ro - r)(r - ri)), found on `samples` uniform angles
   /// and refined by bisection to round-off). Empty for Cavitation::none or an uncavitated film.
   /// Cavities narrower than 2 pi / samples can be missed.
   std::vector<double> rupture_angles(unsigned int samples) const;
 
-  /// Force, moments, leakage, friction, extremes and cavitated fraction (film_loads.h).
+  /// Force, moments, leakage, friction, extremes and cavitated fraction (film_loads.h; the
+  /// fraction is 0 without a cavitation model). Under half-Sommerfeld the leakage is that of the
+  /// clipped field, so inflow and outflow need not balance.
   FilmLoads loads(const NarrowSealQuadrature &quadrature = {}) const;
 
   const FilmThickness &film() const { return film_; }
