@@ -77,7 +77,9 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   TimerOutput::Scope t(timer, "setup");
   dof_handler.clear();
   triangulation.clear();
-  mesh_parameters.grading_clearance = film.clearance + film.axial_offset;
+  // Grading from C0 and coning only, so that perturbing z or the tilts (finite-difference
+  // coefficients) keeps the same mesh.
+  mesh_parameters.grading_clearance = film.clearance;
   mesh_parameters.grading_coning = film.coning;
   mesh_parameters.create(triangulation, film.inner_radius, film.outer_radius, coarsening);
 
@@ -170,51 +172,67 @@ void ReynoldsSolver::assemble_system()
   system_rhs.compress(VectorOperation::add);
 }
 
-void ReynoldsSolver::solve()
+void ReynoldsSolver::factorize()
 {
-  TimerOutput::Scope t(timer, "solve");
-  TrilinosWrappers::MPI::Vector solution(locally_owned_dofs, mpi_communicator);
-  const bool use_direct =
+  // One factorisation (or AMG hierarchy) per matrix, reused by the solve and by every linearised
+  // solve of the dynamic coefficients.
+  use_direct_solver =
       linear_solver == LinearSolver::direct ||
       (linear_solver == LinearSolver::automatic && dof_handler.n_dofs() < direct_solver_limit);
-  if (use_direct)
+  direct_control = std::make_unique<SolverControl>(1, 0);
+  if (use_direct_solver)
   {
-    SolverControl control(1, 0);
-    TrilinosWrappers::SolverDirect direct(control);
-    direct.solve(system_matrix, solution, system_rhs);
-    last_iterations = 1;
+    direct_solver = std::make_unique<TrilinosWrappers::SolverDirect>(*direct_control);
+    direct_solver->initialize(system_matrix);
   }
   else
   {
-    const double target = solver_tolerance * system_rhs.l2_norm();
-    SolverControl control(std::max<unsigned int>(1000, dof_handler.n_dofs() / 10),
-                          std::max(target, std::numeric_limits<double>::min()), false, false);
-    TrilinosWrappers::PreconditionAMG amg;
+    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic = true;
     data.higher_order_elements = polynomial_degree > 1;
     data.smoother_sweeps = 2;
     data.aggregation_threshold = 0.02;
-    amg.initialize(system_matrix, data);
-    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-    try
-    {
-      cg.solve(system_matrix, solution, system_rhs, amg);
-    }
-    catch (SolverControl::NoConvergence &e)
-    {
-      std::ostringstream s;
-      s << "Reynolds solver: CG+AMG did not converge in " << e.last_step << " iterations (residual "
-        << e.last_residual << ", target " << target << "); try 'set Linear solver = direct'";
-      throw std::runtime_error(s.str());
-    }
-    last_iterations = control.last_step();
+    amg->initialize(system_matrix, data);
   }
+}
+
+unsigned int ReynoldsSolver::solve_linear_system(const TrilinosWrappers::MPI::Vector &rhs,
+                                                 TrilinosWrappers::MPI::Vector &x) const
+{
+  if (use_direct_solver)
+  {
+    direct_solver->solve(x, rhs);
+    return 1;
+  }
+  const double target = solver_tolerance * rhs.l2_norm();
+  SolverControl control(std::max<unsigned int>(1000, dof_handler.n_dofs() / 10),
+                        std::max(target, std::numeric_limits<double>::min()), false, false);
+  SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+  try
+  {
+    cg.solve(system_matrix, x, rhs, *amg);
+  }
+  catch (SolverControl::NoConvergence &e)
+  {
+    std::ostringstream s;
+    s << "Reynolds solver: CG+AMG did not converge in " << e.last_step << " iterations (residual "
+      << e.last_residual << ", target " << target << "); try 'set Linear solver = direct'";
+    throw std::runtime_error(s.str());
+  }
+  return control.last_step();
+}
+
+void ReynoldsSolver::solve()
+{
+  TimerOutput::Scope t(timer, "solve");
+  factorize();
+  TrilinosWrappers::MPI::Vector solution(locally_owned_dofs, mpi_communicator);
+  last_iterations = solve_linear_system(system_rhs, solution);
   constraints.distribute(solution);
+  if (!std::isfinite(solution.linfty_norm()))
+    throw std::runtime_error("Reynolds solver: the linear solve produced a non-finite pressure");
   locally_relevant_solution = solution;
-  for (const auto v : {solution.linfty_norm()})
-    if (!std::isfinite(v))
-      throw std::runtime_error("Reynolds solver: the linear solve produced a non-finite pressure");
 }
 
 FilmLoads ReynoldsSolver::compute_loads() const
@@ -326,6 +344,137 @@ FilmLoads ReynoldsSolver::compute_loads() const
   loads.min_film = film.minimum().value;
   loads.cavitated_fraction = total[9] / total[8];
   return loads;
+}
+
+FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation) const
+{
+  TimerOutput::Scope t(timer, "linearized solve");
+  const QGauss<2> quadrature(polynomial_degree + 2); // the assembly's rule
+  FEValues<2> fe_values(*mapping, *fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n_q = quadrature.size(), dofs_per_cell = fe->n_dofs_per_cell();
+  std::vector<Tensor<1, 2>> grad_p(n_q);
+  std::vector<types::global_dof_index> dofs(dofs_per_cell);
+  Vector<double> cell_rhs(dofs_per_cell);
+  const double mu = conditions.viscosity, mean_speed = conditions.mean_speed();
+
+  // dR_i = int (3 h^2 dh / (12 mu)) grad p . grad phi_i - dh u . grad phi_i + dh_t phi_i,
+  // scaled like the system by 12 mu / C0^3; the perturbed pressure has homogeneous Dirichlet data.
+  AffineConstraints<double> homogeneous(locally_relevant_dofs);
+  DoFTools::make_hanging_node_constraints(dof_handler, homogeneous);
+  for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
+    VectorTools::interpolate_boundary_values(*mapping, dof_handler, id,
+                                             Functions::ZeroFunction<2>(), homogeneous);
+  homogeneous.close();
+
+  TrilinosWrappers::MPI::Vector rhs(locally_owned_dofs, mpi_communicator);
+  auto perturbation_at = [&](const Point<2> &x, double &dh, double &dh_dt)
+  {
+    const double r = x.norm(), theta = std::atan2(x[1], x[0]);
+    dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
+    dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
+  };
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      fe_values.reinit(cell);
+      fe_values.get_function_gradients(locally_relevant_solution, grad_p);
+      cell_rhs = 0;
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Point<2> &x = fe_values.quadrature_point(q);
+        const double h = film.value(x.norm(), std::atan2(x[1], x[0]));
+        double dh, dh_dt;
+        perturbation_at(x, dh, dh_dt);
+        const Tensor<1, 2> dflux = (3 * h * h * dh / (12 * mu)) * grad_p[q] -
+                                   Tensor<1, 2>({-dh * mean_speed * x[1], dh * mean_speed * x[0]});
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          cell_rhs(i) -=
+              equation_scale *
+              (dflux * fe_values.shape_grad(i, q) + dh_dt * fe_values.shape_value(i, q)) *
+              fe_values.JxW(q);
+      }
+      cell->get_dof_indices(dofs);
+      homogeneous.distribute_local_to_global(cell_rhs, dofs, rhs);
+    }
+  rhs.compress(VectorOperation::add);
+
+  TrilinosWrappers::MPI::Vector dp_owned(locally_owned_dofs, mpi_communicator);
+  solve_linear_system(rhs, dp_owned);
+  homogeneous.distribute(dp_owned);
+  TrilinosWrappers::MPI::Vector dp(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  dp = dp_owned;
+
+  // Integrate the perturbed loads (same definitions as compute_loads, linearised).
+  IndexSet inner_dofs, outer_dofs;
+  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), inner_dofs,
+                                  {AnnulusMesh::inner_boundary});
+  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_dofs,
+                                  {AnnulusMesh::outer_boundary});
+  const bool clip = cavitation.model == Cavitation::half_sommerfeld;
+  const double cpsi = std::cos(film.tilt_angle), spsi = std::sin(film.tilt_angle);
+  const double relative_speed = conditions.rotor_speed - conditions.stator_speed;
+  std::vector<double> p(n_q), dpv(n_q);
+  std::vector<Tensor<1, 2>> grad_dp(n_q);
+  std::vector<double> sum(8, 0.0);
+  Vector<double> local_residual(dofs_per_cell);
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      fe_values.reinit(cell);
+      fe_values.get_function_values(locally_relevant_solution, p);
+      fe_values.get_function_gradients(locally_relevant_solution, grad_p);
+      fe_values.get_function_values(dp, dpv);
+      fe_values.get_function_gradients(dp, grad_dp);
+      cell->get_dof_indices(dofs);
+      local_residual = 0;
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Point<2> &x = fe_values.quadrature_point(q);
+        const double r = x.norm(), theta = std::atan2(x[1], x[0]);
+        const double h = film.value(r, theta), JxW = fe_values.JxW(q);
+        double dh, dh_dt;
+        perturbation_at(x, dh, dh_dt);
+        const double d = (clip && p[q] < cavitation.pressure) ? 0.0 : dpv[q];
+        sum[0] += d * JxW;
+        sum[1] += d * x[1] * JxW;
+        sum[2] += -d * x[0] * JxW;
+        sum[3] += -d * (x[0] * cpsi + x[1] * spsi) * JxW;
+        sum[4] += d * (x[1] * cpsi - x[0] * spsi) * JxW;
+        const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
+        const double ddp_dtheta = -x[1] * grad_dp[q][0] + x[0] * grad_dp[q][1];
+        sum[7] += (-mu * relative_speed * r * r * dh / (h * h) + 0.5 * dh * dp_dtheta +
+                   0.5 * h * ddp_dtheta) *
+                  JxW;
+        const double K = h * h * h / (12 * mu), dK = 3 * h * h * dh / (12 * mu);
+        const Tensor<1, 2> dflux = K * grad_dp[q] + dK * grad_p[q] -
+                                   Tensor<1, 2>({-dh * mean_speed * x[1], dh * mean_speed * x[0]});
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          local_residual(i) +=
+              (dflux * fe_values.shape_grad(i, q) + dh_dt * fe_values.shape_value(i, q)) * JxW;
+      }
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        if (inner_dofs.is_element(dofs[i]))
+          sum[5] += local_residual(i);
+        if (outer_dofs.is_element(dofs[i]))
+          sum[6] += local_residual(i);
+      }
+    }
+  std::vector<double> total(sum.size());
+  MPI_Allreduce(sum.data(), total.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM,
+                mpi_communicator);
+  FilmLoads d;
+  d.force_z = total[0];
+  d.moment_x = total[1];
+  d.moment_y = total[2];
+  d.moment_restoring = total[3];
+  d.moment_transverse = total[4];
+  d.leakage_inner = -total[5];
+  d.leakage_outer = -total[6];
+  d.friction_torque = total[7];
+  return d;
 }
 
 FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,

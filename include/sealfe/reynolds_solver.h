@@ -18,6 +18,9 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -55,6 +58,22 @@ public:
   FilmLoads run(const FilmThickness &film, const OperatingConditions &conditions,
                 const unsigned int coarsening = 0);
 
+  /// A perturbation direction of the film: dh/dq (m per unit q) and d(dh/dt)/d(qdot) (m/s per unit
+  /// qdot), as functions of (r, theta). For q = (z, tilt_x, tilt_y): dh/dq = 1, r sin(theta),
+  /// -r cos(theta) (film_thickness.h), and the same for the rates.
+  struct FilmPerturbation
+  {
+    std::function<double(double, double)> dh;
+    std::function<double(double, double)> dh_dt;
+  };
+
+  /// Derivative of every load of the last run() in the direction `perturbation`: the Reynolds
+  /// system linearised about the solved pressure, A dp = -(dR/dh) dh - (dR/dh_t) dh_t, solved with
+  /// the factorisation (or AMG hierarchy) of run(), so one extra linear solve. Fields of the
+  /// result are derivatives (force_z: N per unit q, leakage: m^3/s per unit q, ...). With
+  /// half-Sommerfeld the cavity boundary is frozen: dp counts only where p > p_cav.
+  FilmLoads linearized_loads(const FilmPerturbation &perturbation) const;
+
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
   /// into `directory`; returns the PVD file name.
   std::string write_output(const std::string &directory) const;
@@ -88,6 +107,9 @@ public:
 private:
   void setup_system(const unsigned int coarsening);
   void assemble_system();
+  void factorize();
+  unsigned int solve_linear_system(const dealii::TrilinosWrappers::MPI::Vector &rhs,
+                                   dealii::TrilinosWrappers::MPI::Vector &x) const;
   void solve();
   FilmLoads compute_loads() const;
 
@@ -104,6 +126,11 @@ private:
   dealii::AffineConstraints<double> constraints;
   dealii::TrilinosWrappers::SparseMatrix system_matrix;
   dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution, system_rhs;
+
+  bool use_direct_solver = true;
+  std::unique_ptr<dealii::SolverControl> direct_control;
+  std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct_solver;
+  std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
 
   double equation_scale = 1; // 12 mu / C0^3
   unsigned int last_iterations = 0;
