@@ -1,3 +1,4 @@
+#include <sealfe/green_etsion.h>
 #include <sealfe/seal_dynamics.h>
 
 #include <deal.II/lac/lapack_full_matrix.h>
@@ -793,6 +794,220 @@ AngularSealDynamics::integrate(const double rotor_speed, const double stator_spe
     record(t_out, y);
   }
   return samples;
+}
+
+namespace
+{
+void declare_ring(dealii::ParameterHandler &prm, const std::string &name, const RingProperties &d,
+                  const std::string &what)
+{
+  using dealii::Patterns::Double;
+  auto str = [](const double v)
+  {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  prm.enter_subsection(name);
+  prm.declare_entry("Transverse inertia", str(d.transverse_inertia), Double(0),
+                    "Transverse mass moment of inertia I_t (kg m^2) of the " + what +
+                        " about a diameter through its centre.");
+  prm.declare_entry("Polar inertia", str(d.polar_inertia), Double(0),
+                    "Polar mass moment of inertia I_p (kg m^2): gyroscopic moment I_p omega "
+                    "times the tilt rate. I_t/I_p < 1/2 is a short disk, > 2 a long rotor.");
+  prm.declare_entry("Support stiffness", str(d.support_stiffness), Double(0),
+                    "Angular stiffness (N m/rad) of the support (O-ring/springs, or the shaft "
+                    "for a flexible rotor).");
+  prm.declare_entry("Support damping", str(d.support_damping), Double(0),
+                    "Direct angular damping (N m s/rad) of the support.");
+  prm.declare_entry("Rotating damping", str(d.rotating_damping), Double(0),
+                    "Part of the damping that turns with the ring (N m s/rad): adds the "
+                    "circulatory stiffness speed x this. Equal to Support damping for a support "
+                    "spinning with its shaft (Wileman & Green); D_omega_r of Varney & Green.");
+  prm.declare_entry("Support misalignment", str(d.support_misalignment), Double(),
+                    "Static misalignment (rad) of the support: the tilt it holds the ring at "
+                    "(turns with the ring if it spins). Stator: gamma_si; rotor: chi_s "
+                    "(run-out). For a rigidly mounted ring, the ring's own tilt.");
+  prm.declare_entry("Dynamic misalignment", str(d.dynamic_misalignment), Double(),
+                    "Angle chi (rad) between the principal axes and the spin axis of a "
+                    "flexibly mounted spinning ring: forces (I_t - I_p) chi omega^2.");
+  prm.leave_subsection();
+}
+
+RingProperties parse_ring(dealii::ParameterHandler &prm, const std::string &name)
+{
+  RingProperties r;
+  prm.enter_subsection(name);
+  r.transverse_inertia = prm.get_double("Transverse inertia");
+  r.polar_inertia = prm.get_double("Polar inertia");
+  r.support_stiffness = prm.get_double("Support stiffness");
+  r.support_damping = prm.get_double("Support damping");
+  r.rotating_damping = prm.get_double("Rotating damping");
+  r.support_misalignment = prm.get_double("Support misalignment");
+  r.dynamic_misalignment = prm.get_double("Dynamic misalignment");
+  prm.leave_subsection();
+  return r;
+}
+} // namespace
+
+void SealDynamicsInput::declare_parameters(dealii::ParameterHandler &prm)
+{
+  // Defaults: Varney & Green (seed 002) Table 2 with delta = I_tr/I_pr = 2, chi = 0.5 mrad.
+  RingProperties rotor_default, stator_default;
+  rotor_default.transverse_inertia = 0.2;
+  rotor_default.polar_inertia = 0.1;
+  rotor_default.support_stiffness = 5e5;
+  rotor_default.support_damping = 20;
+  rotor_default.rotating_damping = 1;
+  rotor_default.dynamic_misalignment = 0.5e-3;
+  stator_default.transverse_inertia = 1.7e-3;
+  stator_default.polar_inertia = 3.4e-3;
+  stator_default.support_stiffness = 363.9;
+  stator_default.support_damping = 0.22;
+  prm.enter_subsection("Seal dynamics");
+  prm.declare_entry("Configuration", "FMS with flexible rotor",
+                    dealii::Patterns::Selection("FMS|FMR|FMRR|FMS with flexible rotor"),
+                    "Which rings are flexibly mounted. FMS: flexible stator, rigid rotor; FMR: "
+                    "rigid stator, flexible rotor; FMRR: both flexible, both may spin (speeds "
+                    "from Operating conditions); FMS with flexible rotor: FMRR equations with a "
+                    "non-spinning stator and the shaft + seat as the rotor ring.");
+  prm.declare_entry("Film model", "closed form",
+                    dealii::Patterns::Selection("closed form|table|finite element"),
+                    "Film stiffness and damping: closed form = level 0, Green & Etsion narrow "
+                    "seal (k11, d11, (omega1 + omega2)/2 d11); table = level 1 and finite element "
+                    "= level 2 are not available to the dynamics yet.");
+  declare_ring(prm, "Rotor ring", rotor_default,
+               "ring spinning at Operating conditions/Rotor speed");
+  declare_ring(prm, "Stator ring", stator_default,
+               "ring spinning at Operating conditions/Stator speed (0 for a stator)");
+  prm.leave_subsection();
+}
+
+void SealDynamicsInput::parse_parameters(dealii::ParameterHandler &prm)
+{
+  geometry.parse_parameters(prm);
+  operating.parse_parameters(prm);
+  prm.enter_subsection("Seal dynamics");
+  configuration = configuration_from_string(prm.get("Configuration"));
+  film_model = prm.get("Film model");
+  rotor = parse_ring(prm, "Rotor ring");
+  stator = parse_ring(prm, "Stator ring");
+  prm.leave_subsection();
+}
+
+int SealDynamicsInput::film_model_level() const
+{
+  if (film_model == "closed form")
+    return 0;
+  if (film_model == "table")
+    return 1;
+  if (film_model == "finite element")
+    return 2;
+  throw std::runtime_error("Seal dynamics: Film model '" + film_model +
+                           "' is not one of closed form, table, finite element");
+}
+
+void SealDynamicsInput::validate() const
+{
+  const int level = film_model_level();
+  if (level != 0)
+    throw std::runtime_error("Seal dynamics: Film model = " + film_model +
+                             " is not available yet to the dynamics (level " +
+                             std::to_string(level) + "); use Film model = closed form");
+  geometry.validate();
+  operating.validate();
+  if (configuration == SealConfiguration::fms_flexible_rotor && operating.stator_speed != 0.0)
+  {
+    std::ostringstream s;
+    s << "Seal dynamics: Configuration = FMS with flexible rotor needs Operating conditions/"
+      << "Stator speed = 0 (got " << operating.stator_speed << " rad/s); use FMRR";
+    throw std::runtime_error(s.str());
+  }
+  if (configuration == SealConfiguration::fms && operating.stator_speed != 0.0)
+  {
+    std::ostringstream s;
+    s << "Seal dynamics: Configuration = FMS has a non-spinning stator: Operating conditions/"
+      << "Stator speed must be 0 (got " << operating.stator_speed << " rad/s)";
+    throw std::runtime_error(s.str());
+  }
+  GreenEtsionCoefficients check(geometry, operating); // throws on an impossible narrow seal
+  build().validate();
+}
+
+FilmModel SealDynamicsInput::film() const
+{
+  const GreenEtsionCoefficients g(geometry, operating);
+  return [g](const double rotor_speed, const double stator_speed)
+  { return g.coefficients(rotor_speed, stator_speed); };
+}
+
+AngularSealDynamics SealDynamicsInput::build() const
+{
+  return AngularSealDynamics(configuration, rotor, stator, film());
+}
+
+double SealDynamicsInput::contact_tilt() const
+{
+  const double ri = geometry.inner_radius, ro = geometry.outer_radius, C0 = geometry.clearance;
+  return std::min(C0 / ri, (C0 + geometry.coning * (ro - ri)) / ro);
+}
+
+std::string SealDynamicsInput::parameter_names()
+{
+  return "Clearance|Coning|Inner radius|Outer radius|Inner pressure|Outer pressure|Viscosity|"
+         "Rotor speed|Stator speed|"
+         "Rotor ring transverse inertia|Rotor ring polar inertia|Rotor ring support stiffness|"
+         "Rotor ring support damping|Rotor ring rotating damping|"
+         "Stator ring transverse inertia|Stator ring polar inertia|"
+         "Stator ring support stiffness|Stator ring support damping|"
+         "Stator ring rotating damping";
+}
+
+void SealDynamicsInput::set(const std::string &name, const double value,
+                            const bool hold_normalized_coning)
+{
+  auto ring = [&](RingProperties &r, const std::string &what)
+  {
+    if (what == "transverse inertia")
+      r.transverse_inertia = value;
+    else if (what == "polar inertia")
+      r.polar_inertia = value;
+    else if (what == "support stiffness")
+      r.support_stiffness = value;
+    else if (what == "support damping")
+      r.support_damping = value;
+    else if (what == "rotating damping")
+      r.rotating_damping = value;
+    else
+      return false;
+    return true;
+  };
+  if (name == "Clearance")
+  {
+    if (hold_normalized_coning)
+      geometry.coning *= value / geometry.clearance;
+    geometry.clearance = value;
+  }
+  else if (name == "Coning")
+    geometry.coning = value;
+  else if (name == "Inner radius")
+    geometry.inner_radius = value;
+  else if (name == "Outer radius")
+    geometry.outer_radius = value;
+  else if (name == "Inner pressure")
+    operating.inner_pressure = value;
+  else if (name == "Outer pressure")
+    operating.outer_pressure = value;
+  else if (name == "Viscosity")
+    operating.viscosity = value;
+  else if (name == "Rotor speed")
+    operating.rotor_speed = value;
+  else if (name == "Stator speed")
+    operating.stator_speed = value;
+  else if (!((name.rfind("Rotor ring ", 0) == 0 && ring(rotor, name.substr(11))) ||
+             (name.rfind("Stator ring ", 0) == 0 && ring(stator, name.substr(12)))))
+    throw std::runtime_error("Seal dynamics: unknown parameter '" + name + "' (one of " +
+                             parameter_names() + ")");
 }
 
 } // namespace sealfe

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <sealfe/film_coefficients.h>
+#include <sealfe/film_thickness.h>
+#include <sealfe/operating_conditions.h>
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <array>
@@ -206,6 +209,39 @@ private:
   SealConfiguration config;
   RingProperties rotor, stator;
   FilmModel film;
+};
+
+/// Everything a dynamics run reads from a parameter file: subsection "Seal dynamics" (declared
+/// here) plus "Geometry" and "Operating conditions" (declared by the application). Kept as plain
+/// data so that a parameter study can change one entry and build() again.
+struct SealDynamicsInput
+{
+  SealConfiguration configuration = SealConfiguration::fms_flexible_rotor;
+  RingProperties rotor, stator;
+  FilmThickness geometry;
+  OperatingConditions operating;
+  std::string film_model = "closed form"; // "closed form" | "table" | "finite element"
+
+  /// Declares subsection "Seal dynamics" with its subsections "Rotor ring" and "Stator ring".
+  /// Defaults: the FMS seal on a flexible rotor of Varney & Green (seed 002 Tables 1-2).
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  /// Reads "Seal dynamics", "Geometry" and "Operating conditions".
+  void parse_parameters(dealii::ParameterHandler &prm);
+  /// One-line std::runtime_error naming the parameter for impossible input, for configurations
+  /// whose speeds do not fit (FMS with flexible rotor: the stator does not spin), and for film
+  /// levels that do not exist yet ("table", "finite element": not available yet).
+  void validate() const;
+  int film_model_level() const;
+  /// The film model of the chosen level (level 0: GreenEtsionCoefficients) and the dynamics.
+  FilmModel film() const;
+  AngularSealDynamics build() const;
+  /// Relative tilt at which the faces touch: min(C0/ri, (C0 + beta (ro - ri))/ro), i.e. C0/ri
+  /// for a seal coned open outward (seed 002: gamma*_cr = C0/ri).
+  double contact_tilt() const;
+  /// Set a named scalar (a "Second parameter" of the stability sweep); see the list in
+  /// parameter_names(). "Clearance" keeps beta* ro/C0 if hold_normalized_coning.
+  void set(const std::string &name, double value, bool hold_normalized_coning);
+  static std::string parameter_names();
 };
 
 } // namespace sealfe

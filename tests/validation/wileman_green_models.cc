@@ -409,3 +409,122 @@ TEST(WilemanGreen, FmsThresholdWithoutSupportDamping)
   EXPECT_TRUE(damped.is_stable(1.05 * w_cr, 0));
   EXPECT_FALSE(d.is_stable(1.05 * w_cr, 0));
 }
+
+// ---------------------------------------------------------------------------------------------
+// `sealfe stability` front end, on the example prm/stability.prm (Table 1's reference seal).
+#include <sealfe/film_thickness.h>
+#include <sealfe/operating_conditions.h>
+#include <sealfe/stability.h>
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+
+namespace
+{
+/// What the application declares for every sub-command, plus this sub-command's own.
+void declare_all(dealii::ParameterHandler &prm)
+{
+  prm.declare_entry("Output directory", "sealfe-output", dealii::Patterns::Anything());
+  FilmThickness::declare_parameters(prm);
+  OperatingConditions::declare_parameters(prm);
+  stability::declare_parameters(prm);
+}
+
+std::string scratch_directory(const std::string &name)
+{
+  const auto dir = std::filesystem::temp_directory_path() / ("sealfe_test_" + name);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+} // namespace
+
+TEST(StabilitySubcommand, ExamplePrmReproducesTable1ReferenceAndClearanceRows)
+{
+  dealii::ParameterHandler prm;
+  declare_all(prm);
+  prm.parse_input(std::string(SEALFE_SOURCE_DIR) + "/prm/stability.prm");
+  const std::string dir = scratch_directory("stability");
+  const nlohmann::json j = stability::run(prm, dir);
+  EXPECT_EQ(j["film_model_level"], 0);
+  EXPECT_EQ(j["configuration"], "FMRR");
+  EXPECT_TRUE(j["stable"].get<bool>());
+  EXPECT_TRUE(j["stable_routh_hurwitz"].get<bool>());
+  EXPECT_EQ(j["eigenvalues"].size(), 8u);
+  EXPECT_NEAR(j["stable_range"][0].get<double>(), -10901.8, 0.01 * 10901.8);
+  EXPECT_NEAR(j["stable_range"][1].get<double>(), 6024.2, 0.01 * 6024.2);
+  // Table 1, C0 rows (c2 = 0.5)
+  const double expected[3][2] = {{-12754.0, 6727.4}, {-10901.8, 6024.2}, {-11019.0, 6984.0}};
+  ASSERT_EQ(j["second_parameter_sweep"].size(), 3u);
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int k = 0; k < 2; ++k)
+      EXPECT_NEAR(j["second_parameter_sweep"][i]["stable_range"][k].get<double>(), expected[i][k],
+                  0.01 * std::abs(expected[i][k]));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/stability_growth_rate.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/stability_sweep.csv"));
+}
+
+TEST(StabilitySubcommand, RefusesBadInputWithOneLine)
+{
+  using Setting = std::array<std::string, 3>; // subsection, entry, value
+  auto message = [](const std::vector<Setting> &settings)
+  {
+    dealii::ParameterHandler prm;
+    declare_all(prm);
+    prm.parse_input(std::string(SEALFE_SOURCE_DIR) + "/prm/stability.prm");
+    for (const auto &s : settings)
+    {
+      prm.enter_subsection(s[0]);
+      prm.set(s[1], s[2]);
+      prm.leave_subsection();
+    }
+    try
+    {
+      stability::run(prm, scratch_directory("stability_bad"));
+    }
+    catch (const std::runtime_error &e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::vector<std::pair<std::vector<Setting>, std::string>> cases = {
+      {{{"Seal dynamics", "Film model", "finite element"}}, "not available yet"},
+      {{{"Seal dynamics", "Film model", "table"}}, "not available yet"},
+      {{{"Stability", "Sweep to", "-50000"}}, "Sweep to"},
+      {{{"Seal dynamics", "Configuration", "FMS with flexible rotor"},
+        {"Operating conditions", "Stator speed", "500"}},
+       "Stator speed"},
+      {{{"Seal dynamics", "Configuration", "FMS"}, {"Operating conditions", "Stator speed", "500"}},
+       "Stator speed"},
+      {{{"Geometry", "Clearance", "-1e-6"}}, "Clearance"},
+      {{{"Stability", "Second parameter values", ""}}, "Second parameter values"},
+  };
+  for (const auto &[settings, needle] : cases)
+  {
+    const std::string m = message(settings);
+    EXPECT_NE(m.find(needle), std::string::npos) << "got: '" << m << "'";
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+  // a flexibly mounted ring without inertia
+  {
+    dealii::ParameterHandler prm;
+    declare_all(prm);
+    prm.parse_input(std::string(SEALFE_SOURCE_DIR) + "/prm/stability.prm");
+    prm.enter_subsection("Seal dynamics");
+    prm.enter_subsection("Stator ring");
+    prm.set("Transverse inertia", "0");
+    prm.leave_subsection();
+    prm.leave_subsection();
+    try
+    {
+      stability::run(prm, scratch_directory("stability_bad"));
+      ADD_FAILURE() << "accepted a ring without inertia";
+    }
+    catch (const std::runtime_error &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Stator ring: Transverse inertia"), std::string::npos)
+          << e.what();
+    }
+  }
+}
