@@ -266,3 +266,85 @@ TEST(VarneyGreen, FaceContactNearCriticalSpeed)
   EXPECT_LT(relative_tilt(d, 1000), 0.1 * limit);
   EXPECT_LT(relative_tilt(d, 5000), limit);
 }
+
+// ---------------------------------------------------------------------------------------------
+// `sealfe response` front end, on the example prm/response.prm (Fig. 6: delta = 2,
+// I_tr/I_ts = 50, chi = 0.5 mrad).
+#include <sealfe/film_thickness.h>
+#include <sealfe/operating_conditions.h>
+#include <sealfe/response.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace
+{
+void declare_all(dealii::ParameterHandler &prm)
+{
+  prm.declare_entry("Output directory", "sealfe-output", dealii::Patterns::Anything());
+  FilmThickness::declare_parameters(prm);
+  OperatingConditions::declare_parameters(prm);
+  response::declare_parameters(prm);
+}
+} // namespace
+
+TEST(ResponseSubcommand, ExamplePrmFindsContactAroundTheCriticalSpeed)
+{
+  dealii::ParameterHandler prm;
+  declare_all(prm);
+  prm.parse_input(std::string(SEALFE_SOURCE_DIR) + "/prm/response.prm");
+  prm.enter_subsection("Forced response");
+  prm.set("Plot", false); // the plot is exercised by hand (doc/dynamics.md), not in CI
+  prm.leave_subsection();
+  const auto dir = std::filesystem::temp_directory_path() / "sealfe_test_response";
+  std::filesystem::create_directories(dir);
+  const nlohmann::json j = response::run(prm, dir.string());
+  EXPECT_EQ(j["configuration"], "FMS with flexible rotor");
+  EXPECT_EQ(j["film_model_level"], 0);
+  EXPECT_NEAR(j["contact_tilt"].get<double>(), 1e-6 / 0.0355, 1e-15);
+  EXPECT_NEAR(j["rotor_critical_speed"].get<double>(), std::sqrt(5e5 / 0.1), 1e-6);
+  EXPECT_TRUE(j["contact"].get<bool>());
+  // the peak lies between the rigidly riding stator's critical speed and the rotor-alone peak
+  const double w = j["speed_at_peak_relative_tilt"].get<double>(), step = 4990.0 / 499;
+  EXPECT_GT(w + step, std::sqrt((5e5 + 363.9) / (0.1 + 4e-3)));
+  EXPECT_LT(w - step, 2240.1);
+  ASSERT_EQ(j["contact_speed_ranges"].size(), 1u);
+  EXPECT_LT(j["contact_speed_ranges"][0][0].get<double>(), w);
+  EXPECT_GT(j["contact_speed_ranges"][0][1].get<double>(), w);
+  EXPECT_EQ(j["unstable_speed_ranges"].size(), 0u);
+  // the CSV has one row per speed and the columns the plot script reads
+  std::ifstream csv(dir / "response.csv");
+  std::string line, header;
+  unsigned int rows = 0;
+  while (std::getline(csv, line))
+    if (!line.empty() && line[0] != '#')
+    {
+      if (header.empty())
+        header = line;
+      else
+        ++rows;
+    }
+  EXPECT_EQ(rows, 500u);
+  for (const char *column : {"swept_speed", "relative_tilt", "relative_tilt_phase_deg",
+                             "contact_margin", "contact_tilt", "stable"})
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+}
+
+TEST(ResponseSubcommand, RefusesBadSpeedRange)
+{
+  dealii::ParameterHandler prm;
+  declare_all(prm);
+  prm.parse_input(std::string(SEALFE_SOURCE_DIR) + "/prm/response.prm");
+  prm.enter_subsection("Forced response");
+  prm.set("Speed to", "5");
+  prm.leave_subsection();
+  try
+  {
+    response::run(prm, std::filesystem::temp_directory_path().string());
+    ADD_FAILURE() << "accepted Speed to < Speed from";
+  }
+  catch (const std::runtime_error &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("Speed to"), std::string::npos) << e.what();
+  }
+}
