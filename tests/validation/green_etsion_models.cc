@@ -201,6 +201,10 @@ TEST(GreenEtsion, AnnulusQuadratureWithinNarrowSealBounds)
     const double rm = 0.5 * (s.ri + s.ro);
     const double lo2 = std::pow(s.ri / rm, 2), hi2 = std::pow(s.ro / rm, 2);
     const double lo3 = std::pow(s.ri / rm, 3), hi3 = std::pow(s.ro / rm, 3);
+    RecordProperty("Ri_" + std::to_string(Ri) + "_d11_k11_Kzz_ratio",
+                   std::to_string(D[1][1] / g.angular_damping()) + " " +
+                       std::to_string(K[1][1] / g.angular_stiffness()) + " " +
+                       std::to_string(K[0][0] / g.axial_stiffness()));
     EXPECT_GE(D[1][1] / g.angular_damping(), lo3) << "Ri = " << Ri;
     EXPECT_LE(D[1][1] / g.angular_damping(), hi3) << "Ri = " << Ri;
     EXPECT_GE(K[1][1] / g.angular_stiffness(), lo2) << "Ri = " << Ri;
@@ -232,6 +236,10 @@ TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
     const double rm = 0.5 * (s.ri + s.ro);
     const double lo = std::pow(s.ri / rm, 3), hi = std::pow(s.ro / rm, 3);
     const double ratio000 = D[1][1] / d11(S_seed000), ratio002 = D[1][1] / d11(S_seed002);
+    RecordProperty(s.ri > 0.035 ? "varney_green_ratio_S000" : "wileman_green_ratio_S000",
+                   std::to_string(ratio000));
+    RecordProperty(s.ri > 0.035 ? "varney_green_ratio_S002" : "wileman_green_ratio_S002",
+                   std::to_string(ratio002));
     EXPECT_GE(ratio000, lo);
     EXPECT_LE(ratio000, hi);
     EXPECT_LT(ratio002, lo); // (1 + Ri)/(1 - Ri) = 9 (Ri = 0.8) or 14.4 (Ri = 0.87) too large
