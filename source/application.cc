@@ -261,28 +261,24 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
   nlohmann::json timings = solver.stage_times();
 
-  // Error estimate: a second solve on a mesh twice as coarse. Loads of degree-k elements converge
-  // at least like h^(k+1) (the L2 rate of p; linear functionals often converge faster, which
-  // only makes the estimate more conservative), so the error of the fine result is estimated as
-  // |L_h - L_2h| / (2^(k+1) - 1).
+  // Error estimate: a second solve on a mesh twice as coarse (estimate_load_errors).
   nlohmann::json estimate;
   if (solver.error_estimate_enabled() && solver.mesh().can_coarsen(1))
   {
     ReynoldsSolver coarse(comm);
     coarse.parse_parameters(prm);
     const FilmLoads c = coarse.run(film, conditions, 1);
-    const double factor = 1.0 / (std::pow(2.0, solver.degree() + 1) - 1);
-    auto e = [&](double fine, double coarse_value)
-    { return std::abs(fine - coarse_value) * factor; };
-    estimate = {{"force_z", e(loads.force_z, c.force_z)},
-                {"moment_x", e(loads.moment_x, c.moment_x)},
-                {"moment_y", e(loads.moment_y, c.moment_y)},
-                {"moment_restoring", e(loads.moment_restoring, c.moment_restoring)},
-                {"moment_transverse", e(loads.moment_transverse, c.moment_transverse)},
-                {"leakage_inner", e(loads.leakage_inner, c.leakage_inner)},
-                {"leakage_outer", e(loads.leakage_outer, c.leakage_outer)},
-                {"friction_torque", e(loads.friction_torque, c.friction_torque)},
-                {"method", "difference to a 2x coarser mesh / (2^(k+1) - 1)"},
+    const FilmLoads e = estimate_load_errors(loads, c, solver.degree());
+    estimate = {{"force_z", e.force_z},
+                {"moment_x", e.moment_x},
+                {"moment_y", e.moment_y},
+                {"moment_restoring", e.moment_restoring},
+                {"moment_transverse", e.moment_transverse},
+                {"leakage_inner", e.leakage_inner},
+                {"leakage_outer", e.leakage_outer},
+                {"friction_torque", e.friction_torque},
+                {"cavitated_fraction", e.cavitated_fraction},
+                {"method", "difference to a 2x coarser mesh / (2^k - 1)"},
                 {"coarse_dofs", coarse.n_dofs()}};
     timings["error_estimate"] = 0.0;
     for (const auto &[k, v] : coarse.stage_times())

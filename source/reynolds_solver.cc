@@ -577,4 +577,19 @@ std::string ReynoldsSolver::write_output(const std::string &directory) const
   return "solution.pvd";
 }
 
+FilmLoads estimate_load_errors(const FilmLoads &fine, const FilmLoads &coarse,
+                               const unsigned int degree)
+{
+  const double factor = 1.0 / (std::pow(2.0, degree) - 1);
+  auto e = [&](double FilmLoads::*member)
+  { return std::abs(fine.*member - coarse.*member) * factor; };
+  FilmLoads error;
+  for (auto member :
+       {&FilmLoads::force_z, &FilmLoads::moment_x, &FilmLoads::moment_y,
+        &FilmLoads::moment_restoring, &FilmLoads::moment_transverse, &FilmLoads::leakage_inner,
+        &FilmLoads::leakage_outer, &FilmLoads::friction_torque, &FilmLoads::cavitated_fraction})
+    error.*member = e(member);
+  return error;
+}
+
 } // namespace sealfe

@@ -38,7 +38,7 @@ public:
     return value(std::hypot(x, y), std::atan2(y, x));
   }
   /// dh/dr
-  double d_dr(const double r, const double theta) const
+  double d_dr(const double /*r*/, const double theta) const
   {
     return coning + tilt * std::cos(theta - tilt_angle);
   }

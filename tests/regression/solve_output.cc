@@ -1,0 +1,102 @@
+// `sealfe solve` on its defaults: summary.json has the documented keys in SI units, the VTU has
+// the documented point fields on the curved geometry, and the default seal's force is within its
+// own error estimate of the exact axisymmetric value (443.682 N,
+// tests/validation/reynolds_exact.cc).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+fs::path run_default(const std::string &name)
+{
+  const fs::path dir = fs::temp_directory_path() / ("sealfe_regression_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "case.prm") << "set Output directory = " << (dir / "out").string() << "\n";
+  const std::string cmd = std::string(SEALFE_BINARY) + " solve " + (dir / "case.prm").string() +
+                          " > " + (dir / "log").string() + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  return dir / "out";
+}
+} // namespace
+
+TEST(SolveOutput, SummaryKeysAndDefaultSeal)
+{
+  const fs::path out = run_default("summary");
+  std::ifstream in(out / "summary.json");
+  ASSERT_TRUE(in.good());
+  const auto s = nlohmann::json::parse(in);
+  for (const char *key :
+       {"force_z", "moment_x", "moment_y", "moment_restoring", "moment_transverse", "leakage_inner",
+        "leakage_outer", "friction_torque", "min_film", "max_pressure", "min_pressure", "dofs",
+        "wall_time", "error_estimate", "cavitated_fraction"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  for (const char *key : {"force_z", "moment_x", "moment_y", "leakage_inner"})
+    EXPECT_TRUE(s["error_estimate"].contains(key)) << key;
+  const double F = s["force_z"], eF = s["error_estimate"]["force_z"];
+  EXPECT_LE(std::abs(F - 443.6818), eF + 1e-3);
+  EXPECT_LT(eF / F, 2e-4); // pinned: the default mesh estimates 1.2e-4 (true error 2.2e-5)
+  EXPECT_DOUBLE_EQ(s["min_film"].get<double>(), 1e-6);
+  EXPECT_DOUBLE_EQ(s["max_pressure"].get<double>(), 4e5);
+  EXPECT_GT(s["leakage_inner"].get<double>(), 0); // po > pi: the flow leaves through r = ri
+  EXPECT_NEAR(s["leakage_inner"].get<double>() + s["leakage_outer"].get<double>(), 0,
+              1e-10 * s["leakage_inner"].get<double>());
+  EXPECT_TRUE(fs::exists(out / "used_parameters.prm"));
+  EXPECT_TRUE(fs::exists(out / "solution.pvd"));
+}
+
+TEST(SolveOutput, VtuHasFieldsOnCurvedGeometry)
+{
+  const fs::path out = run_default("vtu");
+  fs::path vtu;
+  for (const auto &e : fs::directory_iterator(out))
+    if (e.path().extension() == ".vtu")
+      vtu = e.path();
+  ASSERT_FALSE(vtu.empty());
+  auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+  reader->SetFileName(vtu.c_str());
+  reader->Update();
+  vtkUnstructuredGrid *grid = reader->GetOutput();
+  ASSERT_GT(grid->GetNumberOfPoints(), 0);
+  vtkDataArray *p = grid->GetPointData()->GetArray("pressure");
+  vtkDataArray *h = grid->GetPointData()->GetArray("film_thickness");
+  vtkDataArray *q = grid->GetPointData()->GetArray("volume_flux");
+  ASSERT_NE(p, nullptr);
+  ASSERT_NE(h, nullptr);
+  ASSERT_NE(q, nullptr);
+  EXPECT_EQ(q->GetNumberOfComponents(), 3); // VTK pads 2D vectors to 3 components
+  double max_h_error = 0, max_outside = 0, min_r = 1, max_r = 0;
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    grid->GetPoint(i, x);
+    const double r = std::hypot(x[0], x[1]);
+    min_r = std::min(min_r, r);
+    max_r = std::max(max_r, r);
+    // h = C0 + beta (r - ri) for the default seal, evaluated at the output point
+    max_h_error = std::max(max_h_error, std::abs(h->GetTuple1(i) - (1e-6 + 1e-3 * (r - 0.0355))));
+    max_outside = std::max(max_outside, std::max(0.0355 - r, r - 0.0408));
+    EXPECT_GE(p->GetTuple1(i), -1e-6);
+    EXPECT_LE(p->GetTuple1(i), 4e5 + 1e-6);
+  }
+  // VTU coordinates are float32 (relative rounding 6e-8, so about 3e-9 m here).
+  EXPECT_LT(max_h_error, 1e-11);
+  // Curved output: boundary points lie on the circles (a straight-sided mesh would put its edge
+  // midpoints inside the outer circle by ro (1 - cos(pi/128)) = 1.2e-5 m).
+  EXPECT_LT(max_outside, 1e-8);
+  EXPECT_NEAR(min_r, 0.0355, 1e-8);
+  EXPECT_NEAR(max_r, 0.0408, 1e-8);
+}
