@@ -4,7 +4,9 @@
 #include <sealfe/narrow_seal.h>
 #include <sealfe/operating_conditions.h>
 #include <sealfe/output.h>
+#include <sealfe/response.h>
 #include <sealfe/reynolds_solver.h>
+#include <sealfe/stability.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
@@ -43,6 +45,20 @@ std::vector<SubCommand> sub_commands()
   return {
       {"solve", "pressure field, loads, leakage -> summary.json, VTU/PVD", true, true,
        solve::declare_parameters, solve::run},
+      {"stability", "linear stability, eigenvalues and threshold speeds -> summary.json, CSV", true,
+       false, stability::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       {
+         output::make_directory(dir);
+         return stability::run(prm, dir);
+       }},
+      {"response", "steady-state forced response over a speed range -> CSV, PNG", true, false,
+       response::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       {
+         output::make_directory(dir);
+         return response::run(prm, dir);
+       }},
       {"annular", "annular (radial-clearance) seal stiffness, leakage, optimum -> JSON, CSV", false,
        false, annular::declare_parameters,
        [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
