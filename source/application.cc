@@ -1,5 +1,6 @@
 #include <sealfe/annular_seal.h>
 #include <sealfe/application.h>
+#include <sealfe/coefficient_solver.h>
 #include <sealfe/film_thickness.h>
 #include <sealfe/narrow_seal.h>
 #include <sealfe/operating_conditions.h>
@@ -7,6 +8,7 @@
 #include <sealfe/response.h>
 #include <sealfe/reynolds_solver.h>
 #include <sealfe/stability.h>
+#include <sealfe/table_sweep.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
@@ -45,6 +47,10 @@ std::vector<SubCommand> sub_commands()
   return {
       {"solve", "pressure field, loads, leakage -> summary.json, VTU/PVD", true, true,
        solve::declare_parameters, solve::run},
+      {"coefficients", "film stiffness and damping about the operating point -> summary.json", true,
+       true, coefficients::declare_parameters, coefficients::run},
+      {"table", "coefficients and loads over a grid of operating points -> CSV", true, true,
+       table::declare_parameters, table::run},
       {"stability", "linear stability, eigenvalues and threshold speeds -> summary.json, CSV", true,
        false, stability::declare_parameters,
        [](ParameterHandler &prm, const std::string &dir, MPI_Comm)

@@ -1,0 +1,430 @@
+// Finite-element film coefficients (coefficient_solver.h) against independent references:
+//  - the perturbation method (linearised discrete Reynolds system) against central differences of
+//    the nonlinear solve, in full film and with half-Sommerfeld cavitation;
+//  - the axial stiffness and damping of the axisymmetric coned face against the derivative of the
+//    exact 1D solution (curvature included);
+//  - Green & Etsion's narrow-seal k11, d11 and (omega/2) d11 as ri/ro -> 1, and on the Varney &
+//    Green seal;
+//  - the symmetries of an axisymmetric film, and the FMRR speeds (seed 000).
+#include <sealfe/coefficient_solver.h>
+#include <sealfe/green_etsion.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <memory>
+
+using namespace sealfe;
+using Matrix3 = FilmCoefficients::Matrix3;
+
+namespace
+{
+std::unique_ptr<CoefficientSolver>
+make_solver(const unsigned int degree, const unsigned int radial,
+            const unsigned int circumferential,
+            const CoefficientSettings::Method method = CoefficientSettings::Method::perturbation)
+{
+  auto s = std::make_unique<CoefficientSolver>(MPI_COMM_WORLD);
+  s->reynolds().polynomial_degree = degree;
+  s->reynolds().mesh().radial_cells = radial;
+  s->reynolds().mesh().circumferential_cells = circumferential;
+  s->reynolds().estimate_error = false;
+  s->settings.method = method;
+  return s;
+}
+
+/// K or D made dimensionally uniform: diag(1, 1/ro, 1/ro) M diag(1, 1/ro, 1/ro) (a tilt times ro
+/// is a displacement, a moment over ro a force), so that entries can be compared with each other.
+Matrix3 uniform(const Matrix3 &m, const double ro)
+{
+  const double w[3] = {1, 1 / ro, 1 / ro};
+  Matrix3 u;
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      u[i][j] = m[i][j] * w[i] * w[j];
+  return u;
+}
+
+double max_abs(const Matrix3 &m)
+{
+  double s = 0;
+  for (const auto &r : m)
+    for (const double v : r)
+      s = std::max(s, std::abs(v));
+  return s;
+}
+
+/// Largest entry-wise relative difference |a - b| / max(|b_ij|, floor * max|b|) of the uniform
+/// matrices: relative per entry, and relative to the matrix for entries below `floor` of it.
+double relative_difference(const Matrix3 &a, const Matrix3 &b, const double ro,
+                           const double floor = 1e-3)
+{
+  const Matrix3 ua = uniform(a, ro), ub = uniform(b, ro);
+  const double scale = max_abs(ub);
+  double worst = 0;
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      worst = std::max(worst,
+                       std::abs(ua[i][j] - ub[i][j]) / std::max(std::abs(ub[i][j]), floor * scale));
+  return worst;
+}
+
+void print(const char *name, const Matrix3 &m)
+{
+  std::cout << name << "\n";
+  for (const auto &r : m)
+    std::cout << "  " << r[0] << " " << r[1] << " " << r[2] << "\n";
+}
+
+/// The Varney & Green seal (defaults) tilted to eps = gamma ro / C0 at psi = 0.7: a film without
+/// symmetry, so that all 18 coefficients are non-zero.
+FilmThickness tilted_film(const double eps)
+{
+  FilmThickness f;
+  f.tilt = eps * f.clearance / f.outer_radius;
+  f.tilt_angle = 0.7;
+  return f;
+}
+} // namespace
+
+TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesInFullFilm)
+{
+  const FilmThickness film = tilted_film(0.4);
+  OperatingConditions conditions;
+  conditions.rotor_speed = 1500;
+  conditions.stator_speed = -300;
+  auto perturbation = make_solver(2, 6, 64, CoefficientSettings::Method::perturbation);
+  auto difference = make_solver(2, 6, 64, CoefficientSettings::Method::finite_difference);
+  const CoefficientResult p = perturbation->compute(film, conditions);
+  const CoefficientResult d = difference->compute(film, conditions);
+  print("K perturbation", p.coefficients.stiffness);
+  print("K finite difference", d.coefficients.stiffness);
+  print("D perturbation", p.coefficients.damping);
+  const double ro = film.outer_radius;
+  const double ek = relative_difference(p.coefficients.stiffness, d.coefficients.stiffness, ro);
+  const double ed = relative_difference(p.coefficients.damping, d.coefficients.damping, ro);
+  std::cout << "dofs " << p.dofs << ": perturbation vs central differences (step 1e-4 C0, "
+            << "1e-4 C0/ro): stiffness " << ek << ", damping " << ed << "\n";
+  // Both differentiate the same discrete loads; central differences add O(step^2) truncation
+  // (~ (1e-4)^2 (n/C0 * C0)^2 with n ~ 3 from h^3: ~1e-7) and round-off ~1e-13/1e-4 = 1e-9.
+  EXPECT_LT(ek, 1e-5);
+  EXPECT_LT(ed, 1e-5);
+  // The loads of the operating point are the same solve.
+  EXPECT_NEAR(p.loads.force_z, d.loads.force_z, 1e-12 * std::abs(p.loads.force_z));
+}
+
+TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesWithHalfSommerfeld)
+{
+  // Pure hydrodynamics (pi = po = 0) of a tilted face: about half of the dam cavitates.
+  const FilmThickness film = tilted_film(0.5);
+  OperatingConditions conditions;
+  conditions.outer_pressure = 0;
+  std::vector<double> ek, ed;
+  const std::vector<double> steps = {1e-2, 1e-3, 1e-4, 1e-5};
+  auto perturbation = make_solver(2, 6, 64);
+  perturbation->reynolds().cavitation.model = Cavitation::half_sommerfeld;
+  const CoefficientResult p = perturbation->compute(film, conditions);
+  print("K perturbation", p.coefficients.stiffness);
+  std::cout << "cavitated fraction " << p.loads.cavitated_fraction << "\n";
+  for (const double step : steps)
+  {
+    auto difference = make_solver(2, 6, 64, CoefficientSettings::Method::finite_difference);
+    difference->reynolds().cavitation.model = Cavitation::half_sommerfeld;
+    difference->settings.relative_step = step;
+    const CoefficientResult d = difference->compute(film, conditions);
+    ek.push_back(
+        relative_difference(p.coefficients.stiffness, d.coefficients.stiffness, film.outer_radius));
+    ed.push_back(
+        relative_difference(p.coefficients.damping, d.coefficients.damping, film.outer_radius));
+    std::cout << "step " << step << ": stiffness " << ek.back() << ", damping " << ed.back()
+              << "\n";
+  }
+}
+
+namespace
+{
+struct NarrowDeparture
+{
+  double stiffness, damping, cross, axial_stiffness, axial_damping;
+};
+
+/// Relative departures of the FE angular coefficients from Green & Etsion's for a coned face of
+/// width (1 - Ri) ro at fixed ro, C0 and film shape h_o/h_i = 1 + x (x = beta* (ro - ri)/C0).
+NarrowDeparture narrow_departure(const double width, const double x, const unsigned int radial,
+                                 const unsigned int circumferential)
+{
+  FilmThickness film;
+  film.inner_radius = (1 - width) * film.outer_radius;
+  film.coning = x * film.clearance / (film.outer_radius - film.inner_radius);
+  OperatingConditions conditions; // FMS: rotor 1000 rad/s, po - pi = 400 kPa
+  auto solver = make_solver(3, radial, circumferential);
+  const FilmCoefficients fe = solver->coefficients(film, conditions);
+  const GreenEtsionCoefficients ge(film, conditions);
+  NarrowDeparture d;
+  d.stiffness = fe.tilt_direct_stiffness() / ge.angular_stiffness() - 1;
+  d.damping = fe.tilt_direct_damping() / ge.angular_damping() - 1;
+  d.cross = fe.tilt_cross_stiffness() /
+                ge.cross_coupled_stiffness(conditions.rotor_speed, conditions.stator_speed) -
+            1;
+  d.axial_stiffness = fe.stiffness[0][0] / ge.axial_stiffness() - 1;
+  d.axial_damping = fe.damping[0][0] / ge.axial_damping() - 1;
+  return d;
+}
+} // namespace
+
+TEST(FilmCoefficientsFE, NarrowSealLimitApproachesGreenEtsion)
+{
+  // ri -> ro at fixed ro, C0 and coning beta* (the seal's own beta* = 1 mrad). Green & Etsion
+  // drop the curvature term (h^3/r) dp/dr of the radial flow, the circumferential pressure flow
+  // and the variation of the moment arm across the dam. The circumferential flow and the moment
+  // arm give O(eps^2), eps = 1 - ri/ro; the curvature term gives O(eps) times the asymmetry of
+  // the hydrostatic pressure across the dam, which is O(x) with x = beta* (ro - ri)/C0 -> 0 like
+  // eps. So the departure is O(eps^2): the observed rate tends to 2 from below as x -> 0.
+  // (At fixed x instead, the O(x eps) term stays first order: see the next test.)
+  const std::vector<double> widths = {0.13, 0.08, 0.04, 0.02, 0.01};
+  std::vector<NarrowDeparture> d;
+  for (const double w : widths)
+  {
+    FilmThickness vg;
+    d.push_back(narrow_departure(w, vg.coning * w * vg.outer_radius / vg.clearance, 4, 32));
+    std::cout << "1 - ri/ro = " << w << ": departure k " << d.back().stiffness << ", d "
+              << d.back().damping << ", c " << d.back().cross << ", K_zz "
+              << d.back().axial_stiffness << ", D_zz " << d.back().axial_damping << "\n";
+  }
+  // The Varney & Green seal itself (ri/ro = 0.87): about 10% (the FE moments are smaller).
+  EXPECT_GT(std::abs(d[0].stiffness), 0.05);
+  EXPECT_LT(std::abs(d[0].stiffness), 0.15);
+  EXPECT_GT(std::abs(d[0].damping), 0.05);
+  EXPECT_LT(std::abs(d[0].damping), 0.15);
+  for (unsigned int i = 1; i < widths.size(); ++i)
+  {
+    const double lw = std::log(widths[i - 1] / widths[i]);
+    const double rk = std::log(d[i - 1].stiffness / d[i].stiffness) / lw;
+    const double rd = std::log(d[i - 1].damping / d[i].damping) / lw;
+    const double rc = std::log(d[i - 1].cross / d[i].cross) / lw;
+    std::cout << "observed rate between " << widths[i - 1] << " and " << widths[i] << ": k " << rk
+              << ", d " << rd << ", c " << rc << "\n";
+    EXPECT_LT(std::abs(d[i].stiffness), std::abs(d[i - 1].stiffness));
+    EXPECT_LT(std::abs(d[i].damping), std::abs(d[i - 1].damping));
+    EXPECT_LT(std::abs(d[i].cross), std::abs(d[i - 1].cross));
+    EXPECT_GT(rk, 1.2); // faster than first order everywhere, increasing towards 2
+    EXPECT_GT(rd, 1.2);
+    if (i > 1)
+      EXPECT_GT(rk, std::log(d[i - 2].stiffness / d[i - 1].stiffness) /
+                        std::log(widths[i - 2] / widths[i - 1]));
+  }
+  const double last = std::log(d[3].stiffness / d[4].stiffness) / std::log(2.0);
+  EXPECT_GT(last, 1.7);
+  EXPECT_LT(last, 2.1);
+  // The rotating film: c = (omega/2) d for the FE as for the closed form.
+  for (const auto &x : d)
+    EXPECT_NEAR(x.cross, x.damping, 1e-6);
+  // At 1 - ri/ro = 0.01 every coefficient is within 2e-3 of the closed form.
+  EXPECT_LT(std::abs(d.back().stiffness), 2e-3);
+  EXPECT_LT(std::abs(d.back().damping), 2e-3);
+  EXPECT_LT(std::abs(d.back().axial_stiffness), 2e-3);
+  EXPECT_LT(std::abs(d.back().axial_damping), 2e-3);
+}
+
+TEST(FilmCoefficientsFE, NarrowSealLimitAtFixedFilmShapeIsFirstOrder)
+{
+  // Holding h_o/h_i = 1 + x fixed (x = 5.3 of the Varney & Green seal) as ri -> ro, the
+  // curvature term of the radial flow acting on the asymmetric coned pressure leaves a first-
+  // order departure: rate 1.
+  const double x = 1e-3 * (0.0408 - 0.0355) / 1e-6;
+  const std::vector<double> widths = {0.04, 0.02, 0.01};
+  std::vector<NarrowDeparture> d;
+  for (const double w : widths)
+    d.push_back(narrow_departure(w, x, 8, 64));
+  for (unsigned int i = 1; i < widths.size(); ++i)
+  {
+    const double rk = std::log(d[i - 1].stiffness / d[i].stiffness) / std::log(2.0);
+    const double rd = std::log(d[i - 1].damping / d[i].damping) / std::log(2.0);
+    std::cout << "fixed x: 1 - ri/ro = " << widths[i] << ": departure k " << d[i].stiffness
+              << ", d " << d[i].damping << "; rate k " << rk << ", d " << rd << "\n";
+    EXPECT_NEAR(rk, 1.0, 0.05);
+    EXPECT_NEAR(rd, 1.0, 0.05);
+  }
+}
+
+namespace
+{
+/// Exact axisymmetric coned face (curvature included), h = a + b s with a = C0 + z - beta ri,
+/// b = beta: the hydrostatic pressure p = pi + (po - pi) I(r)/I(ro), I(r) = int_ri^r ds/(s h^3)
+/// (tests/validation/reynolds_exact.cc), its derivative in z, and the squeeze pressure of an axial
+/// velocity zdot: (r h^3 p')' = 12 mu zdot r with p(ri) = p(ro) = 0.
+struct ConedAxial
+{
+  double ri, ro, C0, beta, pi, po, mu;
+  double a() const { return C0 - beta * ri; }
+  double u(const double s) const { return a() + beta * s; }
+  /// antiderivatives of 1/(s u^3), 1/(s u^4) and s/u^3 (partial fractions; checked by the test
+  /// against finite differences of the pressure and of the force)
+  double A3(const double s) const
+  {
+    const double A = a(), U = u(s);
+    return std::log(s / U) / (A * A * A) + 1 / (A * A * U) + 1 / (2 * A * U * U);
+  }
+  double A4(const double s) const
+  {
+    const double A = a(), U = u(s);
+    return std::log(s / U) / (A * A * A * A) + 1 / (A * A * A * U) + 1 / (2 * A * A * U * U) +
+           1 / (3 * A * U * U * U);
+  }
+  double B3(const double s) const
+  {
+    const double U = u(s);
+    return (-1 / U + a() / (2 * U * U)) / (beta * beta);
+  }
+  double I(const double r) const { return A3(r) - A3(ri); }
+  double J(const double r) const { return A4(r) - A4(ri); }
+  double S(const double r) const { return B3(r) - B3(ri); }
+  double pressure(const double r) const { return pi + (po - pi) * I(r) / I(ro); }
+  /// dp/dz: dI/dz = -3 J
+  double pressure_z(const double r) const
+  {
+    return (po - pi) * 3 * (I(r) * J(ro) - J(r) * I(ro)) / (I(ro) * I(ro));
+  }
+  /// squeeze pressure per unit zdot: p = 6 mu (S(r) - S(ro) I(r)/I(ro))
+  double squeeze_pressure(const double r) const { return 6 * mu * (S(r) - S(ro) * I(r) / I(ro)); }
+  /// 2 pi int f(r) r dr by composite 10-point Gauss-Legendre (smooth integrand: exact to round-off)
+  double integrate(const std::function<double(double)> &f) const
+  {
+    const dealii::QGauss<1> g(10);
+    const unsigned int n = 200;
+    double sum = 0;
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int q = 0; q < g.size(); ++q)
+      {
+        const double r = ri + (ro - ri) * (k + g.point(q)[0]) / n;
+        sum += 2 * M_PI * f(r) * r * g.weight(q) * (ro - ri) / n;
+      }
+    return sum;
+  }
+  double force() const
+  {
+    return integrate([this](double r) { return pressure(r); });
+  }
+  double axial_stiffness() const
+  {
+    return -integrate([this](double r) { return pressure_z(r); });
+  }
+  double axial_damping() const
+  {
+    return -integrate([this](double r) { return squeeze_pressure(r); });
+  }
+};
+} // namespace
+
+TEST(FilmCoefficientsFE, AxialStiffnessAndDampingOfConedFaceMatchExact1D)
+{
+  FilmThickness film; // the Varney & Green seal: coned 1 mrad, C0 = 1 um
+  OperatingConditions conditions;
+  conditions.rotor_speed = 0; // hydrostatic (rotation does not change the axisymmetric film)
+  ConedAxial exact{film.inner_radius,   film.outer_radius,         film.clearance,
+                   film.coning,         conditions.inner_pressure, conditions.outer_pressure,
+                   conditions.viscosity};
+  // Self-checks of the exact solution: dF/dz by central differences of the exact force, and the
+  // squeeze ODE r h^3 p' - 6 mu r^2 = const by differences of the squeeze pressure.
+  {
+    const double dz = 1e-4 * film.clearance;
+    ConedAxial plus = exact, minus = exact;
+    plus.C0 += dz;
+    minus.C0 -= dz;
+    EXPECT_NEAR(-(plus.force() - minus.force()) / (2 * dz) / exact.axial_stiffness(), 1.0, 1e-7);
+    auto flux = [&](double r)
+    {
+      const double d = 1e-6 * r, h = exact.u(r);
+      return r * h * h * h * (exact.squeeze_pressure(r + d) - exact.squeeze_pressure(r - d)) /
+                 (2 * d) -
+             6 * exact.mu * r * r;
+    };
+    EXPECT_NEAR(flux(0.036) / flux(0.040), 1.0, 1e-6);
+  }
+  auto solver = make_solver(3, 16, 32);
+  const CoefficientResult r = solver->compute(film, conditions);
+  const double K = r.coefficients.stiffness[0][0], D = r.coefficients.damping[0][0];
+  std::cout << "dofs " << r.dofs << ": K_zz " << K << " exact " << exact.axial_stiffness()
+            << " rel " << K / exact.axial_stiffness() - 1 << "; D_zz " << D << " exact "
+            << exact.axial_damping() << " rel " << D / exact.axial_damping() - 1 << "\n";
+  EXPECT_NEAR(K / exact.axial_stiffness(), 1.0, 1e-6);
+  EXPECT_NEAR(D / exact.axial_damping(), 1.0, 1e-6);
+}
+
+TEST(FilmCoefficientsFE, AxisymmetricFilmIsIsotropicAndAxialDecouples)
+{
+  // Coned, untilted film; one ring spinning (FMS) and two counter-rotating rings (FMRR). The mesh
+  // (nodes at theta = 2 pi j/N, N divisible by 4) is mapped onto itself by a quarter turn and by
+  // the reflection theta -> -theta, so the discrete film has the symmetries of the continuous
+  // one and the zero pattern below holds to the round-off of the direct solve.
+  const FilmThickness film;
+  for (const auto &[w1, w2] : std::vector<std::pair<double, double>>{{1000, 0}, {-2000, 3000}})
+  {
+    OperatingConditions conditions;
+    conditions.rotor_speed = w1;
+    conditions.stator_speed = w2;
+    auto solver = make_solver(2, 6, 64);
+    const FilmCoefficients c = solver->coefficients(film, conditions);
+    print("K", c.stiffness);
+    print("D", c.damping);
+    const double ro = film.outer_radius;
+    const Matrix3 K = uniform(c.stiffness, ro), D = uniform(c.damping, ro);
+    const double sK = max_abs(K), sD = max_abs(D), tol = 1e-9;
+    // Tilt block [[k, c], [-c, k]] and [[d, 0], [0, d]].
+    EXPECT_NEAR(K[1][1], K[2][2], tol * sK);
+    EXPECT_NEAR(K[1][2], -K[2][1], tol * sK);
+    EXPECT_NEAR(D[1][1], D[2][2], tol * sD);
+    EXPECT_NEAR(D[1][2], 0, tol * sD);
+    EXPECT_NEAR(D[2][1], 0, tol * sD);
+    EXPECT_TRUE(c.tilt_block_is_isotropic(1e-9));
+    // Axial row and column decouple from the tilts.
+    for (const unsigned int t : {1u, 2u})
+    {
+      EXPECT_NEAR(K[0][t], 0, tol * sK);
+      EXPECT_NEAR(K[t][0], 0, tol * sK);
+      EXPECT_NEAR(D[0][t], 0, tol * sD);
+      EXPECT_NEAR(D[t][0], 0, tol * sD);
+    }
+  }
+}
+
+TEST(FilmCoefficientsFE, TwoRotatingRingsGiveTheFMRRCrossCoupling)
+{
+  // Seed 000: the film's direct stiffness k11 and damping d11 do not depend on the ring speeds;
+  // the cross-coupled stiffness is D11 = (omega1 + omega2)/2 d11. The FE operator sees the ring
+  // speeds only through the mean surface speed, and at an axisymmetric equilibrium a tilt
+  // perturbation's Couette term omega_m d(dh)/dtheta equals a tilt-rate squeeze term, so
+  // c = omega_m d up to the quadrature error of that identity.
+  const FilmThickness film;
+  auto solver = make_solver(2, 6, 64);
+  OperatingConditions fms;
+  fms.rotor_speed = 1000;
+  const FilmCoefficients ref = solver->coefficients(film, fms);
+  const GreenEtsionCoefficients ge(film, fms);
+  for (const auto &[w1, w2] : std::vector<std::pair<double, double>>{
+           {0, 1000}, {500, 500}, {-2000, 3000}, {-2000, -1000}, {-2000, 2000}})
+  {
+    OperatingConditions c = fms;
+    c.rotor_speed = w1;
+    c.stator_speed = w2;
+    const FilmCoefficients k = solver->coefficients(film, c);
+    const double mean = 0.5 * (w1 + w2);
+    const double ratio = k.tilt_cross_stiffness() / (mean * k.tilt_direct_damping());
+    std::cout << "omega1 " << w1 << " omega2 " << w2 << ": k " << k.tilt_direct_stiffness() << " d "
+              << k.tilt_direct_damping() << " c " << k.tilt_cross_stiffness() << " c/(omega_m d) "
+              << ratio << " c / GE "
+              << k.tilt_cross_stiffness() / ge.cross_coupled_stiffness(w1, w2) << "\n";
+    EXPECT_NEAR(k.tilt_direct_stiffness(), ref.tilt_direct_stiffness(),
+                1e-9 * std::abs(ref.tilt_direct_stiffness()));
+    EXPECT_NEAR(k.tilt_direct_damping(), ref.tilt_direct_damping(),
+                1e-9 * ref.tilt_direct_damping());
+    EXPECT_NEAR(k.tilt_cross_stiffness(), mean / 500.0 * ref.tilt_cross_stiffness(),
+                1e-9 * std::abs(ref.tilt_cross_stiffness()) * std::max(1.0, std::abs(mean) / 500));
+    if (mean != 0)
+      EXPECT_NEAR(ratio, 1.0, 1e-6);
+  }
+}
