@@ -281,6 +281,19 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   summary["polynomial_degree"] = solver.degree();
   summary["linear_iterations"] = solver.linear_iterations();
   summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
+  // Discrete mass balance: what leaves through the two circles plus the squeeze flow, relative
+  // to the larger leakage (zero to solver tolerance for none and jfo).
+  summary["mass_balance_residual"] =
+      std::abs(loads.leakage_inner + loads.leakage_outer + loads.squeeze_flow) /
+      std::max({std::abs(loads.leakage_inner), std::abs(loads.leakage_outer), 1e-300});
+  {
+    const char *names[] = {"none", "half-sommerfeld", "reynolds", "jfo"};
+    summary["cavitation"] = {{"model", names[static_cast<int>(solver.cavitation.model)]},
+                             {"cavitation_pressure", solver.cavitation.pressure},
+                             {"nonlinear_iterations", solver.nonlinear_iterations()},
+                             {"coarse_level_iterations", solver.coarse_nonlinear_iterations()},
+                             {"final_residual", solver.nonlinear_residual()}};
+  }
   nlohmann::json timings = solver.stage_times();
 
   // Error estimate: a second solve on a mesh twice as coarse (estimate_load_errors).

@@ -16,6 +16,7 @@ nlohmann::json FilmLoads::to_json() const
           {"max_pressure", max_pressure},
           {"min_pressure", min_pressure},
           {"cavitated_fraction", cavitated_fraction},
-          {"area", area}};
+          {"area", area},
+          {"squeeze_flow", squeeze_flow}};
 }
 } // namespace sealfe

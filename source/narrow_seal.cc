@@ -135,6 +135,10 @@ NarrowSealModel::NarrowSealModel(const FilmThickness &film, const OperatingCondi
   conditions_.validate();
   if (!std::isfinite(cavitation_pressure))
     throw std::runtime_error("Narrow seal: the cavitation pressure is not a finite number");
+  if (cavitation_ == Cavitation::reynolds || cavitation_ == Cavitation::jfo)
+    throw std::runtime_error(
+        "Narrow seal: Cavitation/Model = reynolds or jfo needs the finite element film model; the "
+        "narrow-seal closed forms support none and half-sommerfeld only");
   if (cavitation_ == Cavitation::half_sommerfeld &&
       cavitation_pressure_ > std::min(conditions_.inner_pressure, conditions_.outer_pressure))
   {

@@ -1,6 +1,7 @@
 #include <sealfe/reynolds_solver.h>
 
 #include <deal.II/base/array_view.h>
+#include <deal.II/base/mpi_remote_point_evaluation.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -14,8 +15,11 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <deal.II/numerics/vector_tools_evaluate.h>
 
+#include <algorithm>
 #include <cmath>
+#include <deque>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -235,16 +239,641 @@ void ReynoldsSolver::solve()
   locally_relevant_solution = solution;
 }
 
-FilmLoads ReynoldsSolver::compute_loads() const
+double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator &cell) const
 {
-  TimerOutput::Scope t(timer, "loads");
+  // Streamline-diffusion parameter for the transport of the void fraction in the cavity: full
+  // upwinding, tau = h_K / (2 |u|), with |u| the Couette speed at the cell centre.
+  const double speed = std::abs(conditions.mean_speed()) * cell->center().norm();
+  return speed > 0 ? cell->diameter() / (2 * speed) : 0.0;
+}
+
+namespace
+{
+/// Film data at one quadrature point.
+struct FilmPoint
+{
+  double r, theta, h, dh_dtheta, dh_dt;
+  Tensor<1, 2> u; // Couette velocity (w1 + w2)/2 * r e_theta
+};
+} // namespace
+
+// ------------------------------------------------------------------------------------------------
+// Cavitation (reynolds, jfo).
+//
+// JFO / Elrod-Adams: every dof j carries a_j = (p_j - p_cav)/P >= 0 and the void fraction
+// v_j = 1 - s_j >= 0 with a_j v_j = 0 (p > p_cav => s = 1, s < 1 => p = p_cav). The discrete mass
+// balance at dof i (the weak form of div(K grad p) = div(s h u) + s dh/dt, s = 1 - v, tested with
+// phi_i) is
+//
+//   R_i = sum_j A_ij p_j - F_i + sum_j G_ij v_j = 0,
+//   A_ij = int K grad phi_j . grad phi_i,          F_i = int h u . grad phi_i - dh/dt phi_i,
+//   G_ij = int phi_j (h u . grad phi_i - dh/dt phi_i) - tau_K (u . grad(phi_j h))(u . grad phi_i).
+//
+// The last term is streamline diffusion of the transported void h v (with the sign of a positive
+// diffusion relative to the transport term, which enters R as -u . grad(v h)): in the cavity the
+// equation is pure transport along the Couette streamlines, which Galerkin alone leaves
+// oscillating (Gravenkamp, Pfeil & Codina 2024). It acts on v only, so it vanishes identically
+// wherever the film is full: without cavitation the JFO discretisation is the full-film Galerkin
+// one. Summed over all test functions it is zero (sum phi_i = 1), so it moves no mass: the two
+// boundary leakages balance the squeeze flow to solver tolerance. The complementarity is solved
+// by Fischer-Burmeister-Newton-Schur (solve_jfo).
+//
+// Reynolds (Swift-Stieber): p_j = p_cav + P u_j with the complementarity min(u_j, R_j/J_jj) = 0,
+// solved by the primal-dual active-set method (Hintermueller, Ito & Kunisch 2002).
+
+void ReynoldsSolver::cell_cavitation_matrices(FEValues<2> &fe_values,
+                                              const DoFHandler<2>::active_cell_iterator &cell,
+                                              const bool with_void, FullMatrix<double> &A,
+                                              FullMatrix<double> &G, Vector<double> &F) const
+{
+  // A: pressure flow, F: full-film Couette + squeeze, G: void-fraction terms (see above). All
+  // scaled by 12 mu / C0^3 like the full-film system.
+  const unsigned int n = fe->n_dofs_per_cell();
+  const double C0 = film.clearance, w = conditions.mean_speed();
+  const double tau = with_void ? streamline_tau(cell) : 0.0;
+  fe_values.reinit(cell);
+  A = 0;
+  G = 0;
+  F = 0;
+  for (const unsigned int q : fe_values.quadrature_point_indices())
+  {
+    const Point<2> &x = fe_values.quadrature_point(q);
+    const double r = x.norm(), theta = std::atan2(x[1], x[0]);
+    const double h = film.value(r, theta), k = Utilities::fixed_power<3>(h / C0);
+    const Tensor<1, 2> uc({-w * x[1], w * x[0]});
+    const double u_grad_h = w * film.d_dtheta(r, theta);
+    double h_t = film.d_dt(r, theta);
+    if (source)
+      h_t += source(x);
+    const double JxW = fe_values.JxW(q);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
+      const double vi = fe_values.shape_value(i, q);
+      const double u_grad_i = uc * gi;
+      F(i) += equation_scale * (h * u_grad_i - h_t * vi) * JxW;
+      for (unsigned int j = 0; j < n; ++j)
+      {
+        A(i, j) += k * (gi * fe_values.shape_grad(j, q)) * JxW;
+        if (with_void)
+        {
+          const double vj = fe_values.shape_value(j, q);
+          const double u_grad_jh = h * (uc * fe_values.shape_grad(j, q)) + vj * u_grad_h;
+          G(i, j) +=
+              equation_scale * (vj * (h * u_grad_i - h_t * vi) - tau * u_grad_jh * u_grad_i) * JxW;
+        }
+      }
+    }
+  }
+}
+
+double ReynoldsSolver::assemble_reynolds_system(const TrilinosWrappers::MPI::Vector &u,
+                                                const bool with_jacobian,
+                                                TrilinosWrappers::MPI::Vector &rhs)
+{
+  const QGauss<2> quadrature(polynomial_degree + 2);
+  FEValues<2> fe_values(*mapping, *fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n = fe->n_dofs_per_cell();
+  FullMatrix<double> A(n, n), G(n, n), J(n, n);
+  Vector<double> F(n), R(n), local_u(n), local_p(n);
+  std::vector<types::global_dof_index> dofs(n);
+  if (with_jacobian)
+    system_matrix = 0;
+  rhs = 0;
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      fe_values.reinit(cell);
+      cell->get_dof_indices(dofs);
+      cell->get_dof_values(u, local_u);
+      for (unsigned int j = 0; j < n; ++j)
+        local_p(j) = cavitation.pressure + pressure_scale * local_u(j);
+      cell_cavitation_matrices(fe_values, cell, false, A, G, F);
+      A.vmult(R, local_p);
+      R -= F;
+      R *= -1.0; // rhs holds -R
+      if (with_jacobian)
+      {
+        J = A;
+        J *= pressure_scale;
+        homogeneous_constraints.distribute_local_to_global(J, R, dofs, system_matrix, rhs);
+      }
+      else
+        homogeneous_constraints.distribute_local_to_global(R, dofs, rhs);
+    }
+  if (with_jacobian)
+    system_matrix.compress(VectorOperation::add);
+  rhs.compress(VectorOperation::add);
+
+  {
+    // Primal-dual active set: dof i is cavitated if u_i - R_i / J_ii <= 0; there the equation is
+    // replaced by u_i = 0 (the Newton row delta u_i = -u_i).
+    active_set.clear();
+    for (const auto i : locally_owned_dofs)
+      if (!homogeneous_constraints.is_constrained(i))
+      {
+        const double diagonal =
+            with_jacobian ? system_matrix.diag_element(i) : reynolds_diagonal[i];
+        if (u[i] + rhs[i] / diagonal <= 0)
+          active_set.push_back(i);
+      }
+    if (with_jacobian)
+    {
+      for (const auto i : locally_owned_dofs)
+        reynolds_diagonal[i] = system_matrix.diag_element(i);
+      reynolds_diagonal.compress(VectorOperation::insert);
+      system_matrix.clear_rows(active_set, 1.0);
+    }
+    for (const auto i : active_set)
+      rhs[i] = -u[i];
+    rhs.compress(VectorOperation::insert);
+  }
+  return rhs.l2_norm();
+}
+
+namespace
+{
+/// Fischer-Burmeister function phi(a, b) = a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0,
+/// a b = 0. Returns phi and its partial derivatives (the generalised ones at the origin).
+struct FischerBurmeister
+{
+  double value, d_a, d_b;
+  FischerBurmeister(const double a, const double b)
+  {
+    const double rho = std::hypot(a, b);
+    value = a + b - rho;
+    d_a = rho > 0 ? 1 - a / rho : 1 - M_SQRT1_2;
+    d_b = rho > 0 ? 1 - b / rho : 1 - M_SQRT1_2;
+  }
+  /// Which unknown a node keeps in the reduced Newton system: the one whose complementarity
+  /// derivative is smaller is eliminated (d_a + d_b >= 2 - sqrt 2, so the kept one is >= 0.29).
+  bool keeps_pressure() const { return d_b >= d_a; }
+};
+} // namespace
+
+// JFO by Fischer-Burmeister-Newton-Schur (Woloszynski et al. 2015): nodal unknowns a_j = (p_j -
+// p_cav)/P and v_j, equations R_j(a, v) = 0 (mass balance, see above) and phi(a_j, v_j) = 0.
+// Each node's complementarity row is used to eliminate one of its two unknowns, so the Newton
+// system stays N x N with the sparsity of the pressure matrix; unlike the universal variable, a
+// node near the cavity boundary sees both its pressure and its void derivative, which is what
+// lets the active set settle. Globalised by backtracking on 1/2 (|R|^2 + |phi|^2).
+double ReynoldsSolver::assemble_jfo_system(const TrilinosWrappers::MPI::Vector &a,
+                                           const TrilinosWrappers::MPI::Vector &v,
+                                           const bool with_jacobian,
+                                           TrilinosWrappers::MPI::Vector &residual,
+                                           TrilinosWrappers::MPI::Vector &newton_rhs)
+{
+  const unsigned int n = fe->n_dofs_per_cell();
+  // A, G, F do not depend on the state: computed once per solve and reused by every Newton
+  // iteration and line-search trial.
+  if (cell_A.empty())
+  {
+    const QGauss<2> quadrature(polynomial_degree + 2);
+    FEValues<2> fe_values(*mapping, *fe, quadrature,
+                          update_values | update_gradients | update_quadrature_points |
+                              update_JxW_values);
+    cell_A.resize(triangulation.n_active_cells());
+    cell_G.resize(triangulation.n_active_cells());
+    cell_F.resize(triangulation.n_active_cells());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const auto k = cell->active_cell_index();
+        cell_A[k].reinit(n, n);
+        cell_G[k].reinit(n, n);
+        cell_F[k].reinit(n);
+        cell_cavitation_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
+      }
+  }
+  FullMatrix<double> J(n, n);
+  Vector<double> R(n), correction(n), local_a(n), local_v(n), local_p(n);
+  std::vector<types::global_dof_index> dofs(n);
+  const double P = pressure_scale;
+
+  if (with_jacobian)
+  {
+    system_matrix = 0;
+    newton_rhs = 0;
+  }
+  residual = 0;
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      const auto k = cell->active_cell_index();
+      const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
+      cell->get_dof_indices(dofs);
+      cell->get_dof_values(a, local_a);
+      cell->get_dof_values(v, local_v);
+      for (unsigned int j = 0; j < n; ++j)
+        local_p(j) = cavitation.pressure + P * local_a(j);
+      A.vmult(R, local_p);
+      R -= cell_F[k];
+      G.vmult_add(R, local_v);
+      R *= -1.0; // residual vector holds -R
+      homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
+      if (with_jacobian)
+      {
+        correction = 0;
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          const FischerBurmeister fb(local_a(j), local_v(j));
+          if (fb.keeps_pressure())
+          {
+            const double ratio = fb.d_a / fb.d_b, shift = fb.value / fb.d_b;
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              J(i, j) = P * A(i, j) - G(i, j) * ratio;
+              correction(i) += G(i, j) * shift;
+            }
+          }
+          else
+          {
+            const double ratio = fb.d_b / fb.d_a, shift = fb.value / fb.d_a;
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              J(i, j) = G(i, j) - P * A(i, j) * ratio;
+              correction(i) += P * A(i, j) * shift;
+            }
+          }
+        }
+        R += correction;
+        homogeneous_constraints.distribute_local_to_global(J, R, dofs, system_matrix, newton_rhs);
+      }
+    }
+  residual.compress(VectorOperation::add);
+  if (with_jacobian)
+  {
+    system_matrix.compress(VectorOperation::add);
+    newton_rhs.compress(VectorOperation::add);
+  }
+  double fb_squared = 0;
+  for (const auto i : locally_owned_dofs)
+    if (!homogeneous_constraints.is_constrained(i))
+      fb_squared += Utilities::fixed_power<2>(FischerBurmeister(a[i], v[i]).value);
+  fb_squared = Utilities::MPI::sum(fb_squared, mpi_communicator);
+  const double r = residual.l2_norm() / jfo_flow_scale;
+  return 0.5 * (r * r + fb_squared);
+}
+
+void ReynoldsSolver::solve_jfo(const double flow_scale)
+{
+  jfo_flow_scale = flow_scale;
+  cell_A.clear();
+  cell_G.clear();
+  cell_F.clear();
+  // Warm start. The Newton iteration moves the cavity boundary by about one cell per iteration
+  // (measured: 17, 63, 168, 400 iterations on 32, 64, 128, 256 cells around), so it starts from
+  // the converged JFO state of the mesh twice as coarse (recursively, mesh sequencing), evaluated
+  // at this mesh's nodes; on the coarsest mesh from the full film: a = (p - p_cav)/P where
+  // positive, else a = 0 with a small void.
+  TrilinosWrappers::MPI::Vector a_owned(locally_owned_dofs, mpi_communicator),
+      v_owned(locally_owned_dofs, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+  {
+    const double d = (locally_relevant_solution[i] - cavitation.pressure) / pressure_scale;
+    a_owned[i] = std::max(d, 0.0);
+    v_owned[i] = d < 0 ? std::min(-d, 1e-3) : 0.0;
+  }
+  if (dof_handler.n_dofs() > 200 && mesh_parameters.can_coarsen(current_coarsening + 1))
+  {
+    ReynoldsSolver coarse(mpi_communicator);
+    coarse.mesh_parameters = mesh_parameters;
+    coarse.cavitation = cavitation;
+    coarse.polynomial_degree = polynomial_degree;
+    coarse.linear_solver = linear_solver;
+    coarse.solver_tolerance = solver_tolerance;
+    coarse.boundary_pressure = boundary_pressure;
+    coarse.source = source;
+    bool coarse_ok = true;
+    try
+    {
+      coarse.run(film, conditions, current_coarsening + 1);
+    }
+    catch (std::exception &)
+    {
+      coarse_ok = false; // fall back to the full-film start
+    }
+    if (coarse_ok)
+    {
+      std::map<types::global_dof_index, Point<2>> support;
+      DoFTools::map_dofs_to_support_points(*mapping, dof_handler, support);
+      std::vector<Point<2>> points;
+      std::vector<types::global_dof_index> indices;
+      for (const auto i : locally_owned_dofs)
+        if (!homogeneous_constraints.is_constrained(i))
+        {
+          indices.push_back(i);
+          points.push_back(support[i]);
+        }
+      Utilities::MPI::RemotePointEvaluation<2> cache;
+      const std::vector<double> pressure = VectorTools::point_values<1>(
+          *coarse.mapping, coarse.dof_handler, coarse.locally_relevant_solution, points, cache);
+      const std::vector<double> void_fraction =
+          VectorTools::point_values<1>(cache, coarse.dof_handler, coarse.locally_relevant_void);
+      if (cache.all_points_found())
+        for (unsigned int k = 0; k < indices.size(); ++k)
+        {
+          a_owned[indices[k]] = std::max((pressure[k] - cavitation.pressure) / pressure_scale, 0.0);
+          v_owned[indices[k]] = std::clamp(void_fraction[k], 0.0, 1.0);
+        }
+      coarse_iterations = coarse.cavitation_iterations + coarse.coarse_iterations;
+    }
+  }
+  a_owned.compress(VectorOperation::insert);
+  v_owned.compress(VectorOperation::insert);
+  TrilinosWrappers::MPI::Vector a(locally_owned_dofs, locally_relevant_dofs, mpi_communicator),
+      v(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  a = a_owned;
+  v = v_owned;
+
+  TrilinosWrappers::MPI::Vector residual(locally_owned_dofs, mpi_communicator),
+      newton_rhs(locally_owned_dofs, mpi_communicator), w(locally_owned_dofs, mpi_communicator),
+      da(locally_owned_dofs, mpi_communicator), dv(locally_owned_dofs, mpi_communicator),
+      trial_a(locally_owned_dofs, mpi_communicator), trial_v(locally_owned_dofs, mpi_communicator);
+  TrilinosWrappers::MPI::Vector ta(locally_owned_dofs, locally_relevant_dofs, mpi_communicator),
+      tv(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+
+  auto fb_max =
+      [&](const TrilinosWrappers::MPI::Vector &aa, const TrilinosWrappers::MPI::Vector &vv)
+  {
+    double m = 0;
+    for (const auto i : locally_owned_dofs)
+      if (!homogeneous_constraints.is_constrained(i))
+        m = std::max(m, std::abs(FischerBurmeister(aa[i], vv[i]).value));
+    return Utilities::MPI::max(m, mpi_communicator);
+  };
+
+  // Newton update of (a, v) from the reduced unknown w (each node's eliminated unknown from its
+  // linearised complementarity row).
+  auto recover = [&](const TrilinosWrappers::MPI::Vector &w)
+  {
+    for (const auto i : locally_owned_dofs)
+    {
+      if (homogeneous_constraints.is_constrained(i))
+      {
+        da[i] = dv[i] = 0;
+        continue;
+      }
+      const FischerBurmeister fb(a_owned[i], v_owned[i]);
+      if (fb.keeps_pressure())
+      {
+        da[i] = w[i];
+        dv[i] = (-fb.value - fb.d_a * w[i]) / fb.d_b;
+      }
+      else
+      {
+        dv[i] = w[i];
+        da[i] = (-fb.value - fb.d_b * w[i]) / fb.d_a;
+      }
+    }
+    da.compress(VectorOperation::insert);
+    dv.compress(VectorOperation::insert);
+  };
+  double best_merit = std::numeric_limits<double>::max();
+  TrilinosWrappers::MPI::Vector best_a(a_owned), best_v(v_owned);
+  unsigned int steps_without_progress = 0;
+  bool monotone = false;
+
+  double merit = 0, mass_residual = 0, complementarity = 0;
+  bool converged = false;
+  unsigned int it = 0;
+  for (; it < cavitation.maximum_iterations; ++it)
+  {
+    merit = assemble_jfo_system(a, v, true, residual, newton_rhs);
+    mass_residual = residual.l2_norm() / flow_scale;
+    complementarity = fb_max(a_owned, v_owned);
+    if (mass_residual < cavitation.tolerance && complementarity < cavitation.tolerance)
+    {
+      converged = true;
+      break;
+    }
+    factorize();
+    w = 0;
+    solve_linear_system(newton_rhs, w);
+    homogeneous_constraints.set_zero(w);
+    recover(w);
+    // Projected full steps with a watchdog: the Newton step with a and v clipped at zero keeps
+    // the iterate feasible and moves the cavity boundary as far as the linearisation says, which
+    // the FB merit line search alone does not (it creeps when a full step trades mass residual
+    // for complementarity residual: 31 instead of 5 iterations on the default mesh). Such steps
+    // may raise the merit for a while; after 10 of them without a new best merit the iteration
+    // returns to the best iterate and continues with Armijo backtracking on the merit, along
+    // which the FB-Newton direction is a descent direction (so the method cannot cycle).
+    double step = 1;
+    if (merit < best_merit)
+    {
+      best_merit = merit;
+      best_a = a_owned;
+      best_v = v_owned;
+      steps_without_progress = 0;
+    }
+    else
+      ++steps_without_progress;
+    if (!monotone && steps_without_progress >= 10)
+    {
+      // Back to the best iterate; from there on plain FB-Newton with backtracking.
+      monotone = true;
+      a_owned = best_a;
+      v_owned = best_v;
+      a = a_owned;
+      v = v_owned;
+      merit = assemble_jfo_system(a, v, true, residual, newton_rhs);
+      factorize();
+      w = 0;
+      solve_linear_system(newton_rhs, w);
+      homogeneous_constraints.set_zero(w);
+      recover(w);
+    }
+    if (!monotone)
+    {
+      trial_a = a_owned;
+      trial_a.add(1.0, da);
+      trial_v = v_owned;
+      trial_v.add(1.0, dv);
+      for (const auto i : locally_owned_dofs)
+      {
+        trial_a[i] = std::max(static_cast<double>(trial_a[i]), 0.0);
+        trial_v[i] = std::max(static_cast<double>(trial_v[i]), 0.0);
+      }
+      trial_a.compress(VectorOperation::insert);
+      trial_v.compress(VectorOperation::insert);
+      da = trial_a;
+      da -= a_owned;
+      dv = trial_v;
+      dv -= v_owned;
+    }
+    else
+      for (unsigned int ls = 0; ls < 30; ++ls, step *= 0.5)
+      {
+        trial_a = a_owned;
+        trial_a.add(step, da);
+        trial_v = v_owned;
+        trial_v.add(step, dv);
+        ta = trial_a;
+        tv = trial_v;
+        if (assemble_jfo_system(ta, tv, false, residual, newton_rhs) <= (1 - 1e-4 * step) * merit)
+          break;
+      }
+    if (std::getenv("SEALFE_DEBUG"))
+      std::cerr << "jfo it " << it << " dofs " << dof_handler.n_dofs() << " mass " << mass_residual
+                << " fb " << complementarity << " step " << step << " merit " << merit << " nop "
+                << steps_without_progress << "\n";
+    a_owned.add(step, da);
+    v_owned.add(step, dv);
+    a = a_owned;
+    v = v_owned;
+  }
+  cavitation_iterations = it;
+  cavitation_residual = std::max(mass_residual, complementarity);
+  if (!converged)
+  {
+    std::ostringstream s;
+    s << "Cavitation (jfo): no convergence in " << cavitation.maximum_iterations
+      << " Newton iterations (relative mass residual " << mass_residual
+      << ", complementarity residual " << complementarity << ", tolerance " << cavitation.tolerance
+      << "); refine the mesh or raise Cavitation/Maximum iterations";
+    throw std::runtime_error(s.str());
+  }
+  // The last assembly built the Jacobian at the solution: factorise it for linearized_loads,
+  // and keep which unknown each node kept with its complementarity derivatives.
+  factorize();
+  jfo_keep_pressure.reinit(locally_owned_dofs, mpi_communicator);
+  jfo_elimination.reinit(locally_owned_dofs, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+  {
+    const FischerBurmeister fb(a_owned[i], v_owned[i]);
+    jfo_keep_pressure[i] = fb.keeps_pressure() ? 1.0 : 0.0;
+    jfo_elimination[i] = fb.keeps_pressure() ? -fb.d_a / fb.d_b : -fb.d_b / fb.d_a;
+  }
+  jfo_keep_pressure.compress(VectorOperation::insert);
+  jfo_elimination.compress(VectorOperation::insert);
+
+  TrilinosWrappers::MPI::Vector p(locally_owned_dofs, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+    p[i] = cavitation.pressure + pressure_scale * a_owned[i];
+  p.compress(VectorOperation::insert);
+  locally_relevant_solution = p;
+  locally_relevant_void = v_owned;
+  last_iterations += it;
+  cell_A.clear();
+  cell_G.clear();
+  cell_F.clear();
+}
+
+void ReynoldsSolver::solve_cavitation()
+{
+  TimerOutput::Scope t(timer, "cavitation");
+  const bool jfo = cavitation.model == Cavitation::jfo;
+  const double p_cav = cavitation.pressure;
+  const double p_lo = std::min(conditions.inner_pressure, conditions.outer_pressure);
+  const double p_hi = std::max(conditions.inner_pressure, conditions.outer_pressure);
+  if (!boundary_pressure && p_lo < p_cav)
+  {
+    std::ostringstream s;
+    s << "Cavitation: a boundary pressure (pi = " << conditions.inner_pressure
+      << " Pa, po = " << conditions.outer_pressure << " Pa) is below the cavitation pressure ("
+      << p_cav << " Pa)";
+    throw std::runtime_error(s.str());
+  }
+  if (jfo && !boundary_pressure && p_hi <= p_cav)
+    throw std::runtime_error(
+        "Cavitation: no supply: both boundary pressures equal the cavitation pressure, so the "
+        "mass-conserving (jfo) film content is not determined (the solution is not unique); raise "
+        "a boundary pressure above the cavitation pressure");
+
+  // Scale of the pressure unknown: the larger of the supply pressure difference and the
+  // full-film pressure excursion.
+  double excursion = 0;
+  for (const auto i : locally_owned_dofs)
+    excursion = std::max(excursion, std::abs(locally_relevant_solution[i] - p_cav));
+  pressure_scale = std::max(Utilities::MPI::max(excursion, mpi_communicator), 1e-300);
+
+  homogeneous_constraints.clear();
+  homogeneous_constraints.reinit(locally_relevant_dofs);
+  DoFTools::make_hanging_node_constraints(dof_handler, homogeneous_constraints);
+  for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
+    VectorTools::interpolate_boundary_values(*mapping, dof_handler, id,
+                                             Functions::ZeroFunction<2>(), homogeneous_constraints);
+  homogeneous_constraints.close();
+  reynolds_diagonal.reinit(locally_owned_dofs, mpi_communicator);
+
+  // Reynolds: warm start from the full-film solution clipped at p_cav.
+  TrilinosWrappers::MPI::Vector u_owned(locally_owned_dofs, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+    u_owned[i] = std::max((locally_relevant_solution[i] - p_cav) / pressure_scale, 0.0);
+  u_owned.compress(VectorOperation::insert);
+  TrilinosWrappers::MPI::Vector u(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  u = u_owned;
+
+  TrilinosWrappers::MPI::Vector rhs(locally_owned_dofs, mpi_communicator),
+      du(locally_owned_dofs, mpi_communicator);
+  // Residual scale: the Couette + squeeze + pressure flow right-hand side of the full film.
+  const double flow_scale = std::max(system_rhs.l2_norm(), 1e-300);
+  if (jfo)
+  {
+    solve_jfo(flow_scale);
+    return;
+  }
+  std::vector<types::global_dof_index> previous_set = {
+      std::numeric_limits<types::global_dof_index>::max()};
+  double residual = 0;
+  bool converged = false;
+  unsigned int it = 0;
+  for (; it < cavitation.maximum_iterations; ++it)
+  {
+    residual = assemble_reynolds_system(u, true, rhs) / flow_scale;
+    const auto &set = active_set;
+    const bool same_set =
+        Utilities::MPI::min(static_cast<int>(set == previous_set), mpi_communicator) == 1;
+    if (same_set && residual < cavitation.tolerance)
+    {
+      converged = true;
+      break;
+    }
+    previous_set = set;
+    factorize();
+    du = 0;
+    solve_linear_system(rhs, du);
+    homogeneous_constraints.set_zero(du);
+    u_owned.add(1.0, du);
+    u = u_owned;
+  }
+  cavitation_iterations = it;
+  cavitation_residual = residual;
+  if (!converged)
+  {
+    std::ostringstream s;
+    s << "Cavitation (reynolds): no convergence in " << cavitation.maximum_iterations
+      << " Newton iterations (relative mass residual " << residual << ", tolerance "
+      << cavitation.tolerance << "); refine the mesh or raise Cavitation/Maximum iterations";
+    throw std::runtime_error(s.str());
+  }
+  // The last assembly built the Jacobian at the solution: factorise it for linearized_loads.
+  factorize();
+  TrilinosWrappers::MPI::Vector p(locally_owned_dofs, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+    p[i] = p_cav + pressure_scale * u_owned[i];
+  p.compress(VectorOperation::insert);
+  locally_relevant_solution = p;
+  last_iterations += it;
+}
+
+/// Loads of the solved state, or (with `perturbation`) their derivative for a perturbation whose
+/// nodal pressure and void-fraction changes are dp, dv. One routine, so that the linearisation
+/// differentiates exactly what the loads integrate.
+FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
+                                          const TrilinosWrappers::MPI::Vector *dp_nodal,
+                                          const TrilinosWrappers::MPI::Vector *dv_nodal) const
+{
   const QGauss<2> quadrature(polynomial_degree + 2); // the assembly's rule (see there)
   FEValues<2> fe_values(*mapping, *fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
   const unsigned int n_q = quadrature.size(), dofs_per_cell = fe->n_dofs_per_cell();
-  std::vector<double> p(n_q);
-  std::vector<Tensor<1, 2>> grad_p(n_q);
+  std::vector<double> p(n_q), v(n_q), dp(n_q, 0.0), dv(n_q, 0.0);
+  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q), grad_dp(n_q), grad_dv(n_q);
   std::vector<types::global_dof_index> dofs(dofs_per_cell);
 
   IndexSet inner_dofs, outer_dofs;
@@ -253,15 +882,19 @@ FilmLoads ReynoldsSolver::compute_loads() const
   DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_dofs,
                                   {AnnulusMesh::outer_boundary});
 
-  const double mu = conditions.viscosity, mean_speed = conditions.mean_speed();
+  const double mu = conditions.viscosity, w = conditions.mean_speed();
   const double relative_speed = conditions.rotor_speed - conditions.stator_speed;
   const double p_ref = conditions.reference_pressure;
   const bool clip = cavitation.model == Cavitation::half_sommerfeld;
+  const bool jfo = cavitation.model == Cavitation::jfo;
   const double p_cav = cavitation.pressure;
   const double cpsi = std::cos(film.tilt_angle), spsi = std::sin(film.tilt_angle);
+  // Below this the film counts as cavitated (pressure at p_cav, or void fraction above zero).
+  const double p_tol = 1e-9 * std::max(pressure_scale, 1.0);
 
-  // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area, cavitated area
-  std::vector<double> sum(10, 0.0);
+  // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area, cavitated area,
+  // squeeze flow
+  std::vector<double> sum(11, 0.0);
   double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
   Vector<double> local_residual(dofs_per_cell);
 
@@ -271,44 +904,106 @@ FilmLoads ReynoldsSolver::compute_loads() const
       fe_values.reinit(cell);
       fe_values.get_function_values(locally_relevant_solution, p);
       fe_values.get_function_gradients(locally_relevant_solution, grad_p);
+      if (jfo)
+      {
+        fe_values.get_function_values(locally_relevant_void, v);
+        fe_values.get_function_gradients(locally_relevant_void, grad_v);
+      }
+      else
+        std::fill(v.begin(), v.end(), 0.0), std::fill(grad_v.begin(), grad_v.end(), Tensor<1, 2>());
+      if (dp_nodal)
+      {
+        fe_values.get_function_values(*dp_nodal, dp);
+        fe_values.get_function_gradients(*dp_nodal, grad_dp);
+      }
+      if (dv_nodal)
+      {
+        fe_values.get_function_values(*dv_nodal, dv);
+        fe_values.get_function_gradients(*dv_nodal, grad_dv);
+      }
+      const double tau = jfo ? streamline_tau(cell) : 0.0;
       cell->get_dof_indices(dofs);
       local_residual = 0;
       for (unsigned int q = 0; q < n_q; ++q)
       {
         const Point<2> &x = fe_values.quadrature_point(q);
         const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-        const double h = film.value(r, theta);
-        const double JxW = fe_values.JxW(q);
-        // Half-Sommerfeld: sub-cavity pressures are replaced by p_cav in the loads.
-        const bool cavitated = clip && p[q] < p_cav;
-        const double dp = (cavitated ? p_cav : p[q]) - p_ref;
-        if (cavitated)
-          sum[9] += JxW;
-        sum[0] += dp * JxW;
-        sum[8] += JxW;
-        sum[1] += dp * x[1] * JxW;
-        sum[2] += -dp * x[0] * JxW;
-        sum[3] += -dp * (x[0] * cpsi + x[1] * spsi) * JxW;
-        sum[4] += dp * (x[1] * cpsi - x[0] * spsi) * JxW;
-        // Shear on the rotor face (Couette + Poiseuille), as a torque resisting the rotor:
-        // tau = mu (w1 - w2) r / h + (h / 2) (1/r) dp/dtheta, times the lever arm r.
-        const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
-        sum[7] += (mu * relative_speed * r * r / h + 0.5 * h * dp_dtheta) * JxW;
-        p_min = std::min(p_min, p[q]);
-        p_max = std::max(p_max, p[q]);
-
-        // Residual of the unconstrained weak form, in physical units (m^3/s):
-        // R_i = int K grad p . grad phi_i - h u . grad phi_i + dh/dt phi_i
-        const double K = h * h * h / (12 * mu);
-        const Tensor<1, 2> hu({-h * mean_speed * x[1], h * mean_speed * x[0]});
-        double volume_source = film.d_dt(r, theta);
+        const double h = film.value(r, theta), JxW = fe_values.JxW(q);
+        const Tensor<1, 2> uc({-w * x[1], w * x[0]});
+        const double u_grad_h = w * film.d_dtheta(r, theta);
+        double h_t = film.d_dt(r, theta);
         if (source)
-          volume_source += source(x);
-        const Tensor<1, 2> flux_term = K * grad_p[q] - hu;
+          h_t += source(x);
+        const double s = 1 - v[q]; // liquid fraction
+        const double K = h * h * h / (12 * mu);
+        double dh = 0, dh_t = 0;
+        if (perturbation)
+        {
+          dh = perturbation->dh ? perturbation->dh(r, theta) : 0.0;
+          dh_t = perturbation->dh_dt ? perturbation->dh_dt(r, theta) : 0.0;
+        }
+
+        // Pressure in the loads: half-Sommerfeld clips it (and freezes the clipped region in
+        // the linearisation); the other models use the solved field.
+        const bool clipped = clip && p[q] < p_cav;
+        const double load_p =
+            perturbation ? (clipped ? 0.0 : dp[q]) : (clipped ? p_cav : p[q]) - p_ref;
+        sum[0] += load_p * JxW;
+        sum[1] += load_p * x[1] * JxW;
+        sum[2] += -load_p * x[0] * JxW;
+        sum[3] += -load_p * (x[0] * cpsi + x[1] * spsi) * JxW;
+        sum[4] += load_p * (x[1] * cpsi - x[0] * spsi) * JxW;
+        sum[8] += JxW;
+        if (clipped || (jfo && v[q] > 1e-9) ||
+            (cavitation.model == Cavitation::reynolds && p[q] < p_cav + p_tol))
+          sum[9] += JxW;
+
+        // Shear on the rotor face: Couette (carried by the liquid fraction) + Poiseuille, as a
+        // torque resisting the rotor: r (s mu (w1 - w2) r / h + (h/2) (1/r) dp/dtheta).
+        const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
+        const double s_clamped = std::clamp(s, 0.0, 1.0);
+        if (!perturbation)
+        {
+          sum[7] += (s_clamped * mu * relative_speed * r * r / h + 0.5 * h * dp_dtheta) * JxW;
+          sum[10] += s * h_t * JxW;
+          p_min = std::min(p_min, p[q]);
+          p_max = std::max(p_max, p[q]);
+        }
+        else
+        {
+          const double ddp_dtheta = -x[1] * grad_dp[q][0] + x[0] * grad_dp[q][1];
+          sum[7] += (-dv[q] * mu * relative_speed * r * r / h -
+                     s * mu * relative_speed * r * r * dh / (h * h) + 0.5 * dh * dp_dtheta +
+                     0.5 * h * ddp_dtheta) *
+                    JxW;
+          sum[10] += (-dv[q] * h_t + s * dh_t) * JxW;
+        }
+
+        // Residual of the unconstrained weak form in m^3/s (its linearisation with a
+        // perturbation): R_i = int (K grad p - s h u) . grad phi_i + s dh/dt phi_i
+        //                      + tau (u . grad(v h))(u . grad phi_i).
+        Tensor<1, 2> flux;
+        double volume, streamline;
+        if (!perturbation)
+        {
+          flux = K * grad_p[q] - s * h * uc;
+          volume = s * h_t;
+          streamline = -tau * (h * (uc * grad_v[q]) + v[q] * u_grad_h);
+        }
+        else
+        {
+          const double dK = 3 * h * h * dh / (12 * mu);
+          flux = K * grad_dp[q] + dK * grad_p[q] - (s * dh - dv[q] * h) * uc;
+          volume = s * dh_t - dv[q] * h_t;
+          streamline = -tau * (h * (uc * grad_dv[q]) + dv[q] * u_grad_h + dh * (uc * grad_v[q]));
+          // (the perturbation of u . grad h in the streamline term is omitted: v vanishes where
+          // it matters at the boundaries, and it is second order in the cavity)
+        }
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          local_residual(i) += (flux_term * fe_values.shape_grad(i, q) +
-                                volume_source * fe_values.shape_value(i, q)) *
-                               JxW;
+          local_residual(i) +=
+              (flux * fe_values.shape_grad(i, q) + volume * fe_values.shape_value(i, q) +
+               streamline * (uc * fe_values.shape_grad(i, q))) *
+              JxW;
       }
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
       {
@@ -318,12 +1013,13 @@ FilmLoads ReynoldsSolver::compute_loads() const
           sum[6] += local_residual(i);
       }
     }
-  // Nodal values too: for Lagrange elements they are point values of p_h.
-  for (const auto i : locally_owned_dofs)
-  {
-    p_min = std::min(p_min, locally_relevant_solution[i]);
-    p_max = std::max(p_max, locally_relevant_solution[i]);
-  }
+  if (!perturbation)
+    for (const auto i : locally_owned_dofs)
+    {
+      // Nodal values too: for Lagrange elements they are point values of p_h.
+      p_min = std::min(p_min, locally_relevant_solution[i]);
+      p_max = std::max(p_max, locally_relevant_solution[i]);
+    }
   std::vector<double> total(sum.size());
   MPI_Allreduce(sum.data(), total.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM,
                 mpi_communicator);
@@ -338,12 +1034,22 @@ FilmLoads ReynoldsSolver::compute_loads() const
   loads.leakage_inner = -total[5];
   loads.leakage_outer = -total[6];
   loads.friction_torque = total[7];
-  loads.area = total[8];
-  loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
-  loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
-  loads.min_film = film.minimum().value;
-  loads.cavitated_fraction = total[9] / total[8];
+  loads.squeeze_flow = total[10];
+  if (!perturbation)
+  {
+    loads.area = total[8];
+    loads.cavitated_fraction = total[9] / total[8];
+    loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
+    loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
+    loads.min_film = film.minimum().value;
+  }
   return loads;
+}
+
+FilmLoads ReynoldsSolver::compute_loads() const
+{
+  TimerOutput::Scope t(timer, "loads");
+  return integrate_loads(nullptr, nullptr, nullptr);
 }
 
 FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation) const
@@ -353,14 +1059,20 @@ FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation)
   FEValues<2> fe_values(*mapping, *fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
-  const unsigned int n_q = quadrature.size(), dofs_per_cell = fe->n_dofs_per_cell();
-  std::vector<Tensor<1, 2>> grad_p(n_q);
-  std::vector<types::global_dof_index> dofs(dofs_per_cell);
-  Vector<double> cell_rhs(dofs_per_cell);
-  const double mu = conditions.viscosity, mean_speed = conditions.mean_speed();
+  const unsigned int n_q = quadrature.size(), n = fe->n_dofs_per_cell();
+  std::vector<double> v(n_q);
+  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q);
+  std::vector<types::global_dof_index> dofs(n);
+  Vector<double> cell_rhs(n);
+  const double mu = conditions.viscosity, w = conditions.mean_speed();
+  const bool nonlinear = cavitation.is_nonlinear();
+  const bool jfo = cavitation.model == Cavitation::jfo;
 
-  // dR_i = int (3 h^2 dh / (12 mu)) grad p . grad phi_i - dh u . grad phi_i + dh_t phi_i,
-  // scaled like the system by 12 mu / C0^3; the perturbed pressure has homogeneous Dirichlet data.
+  // d(residual)/dh in the perturbation direction, scaled like the system by 12 mu / C0^3; the
+  // perturbed unknown has homogeneous Dirichlet data. For reynolds/jfo the matrix is the
+  // Jacobian of the converged active set (the exact derivative where that set is locally
+  // constant: the cavitation boundary moves with the perturbation through the Jacobian's
+  // switched columns, jfo, or stays frozen, reynolds).
   AffineConstraints<double> homogeneous(locally_relevant_dofs);
   DoFTools::make_hanging_node_constraints(dof_handler, homogeneous);
   for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
@@ -369,112 +1081,78 @@ FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation)
   homogeneous.close();
 
   TrilinosWrappers::MPI::Vector rhs(locally_owned_dofs, mpi_communicator);
-  auto perturbation_at = [&](const Point<2> &x, double &dh, double &dh_dt)
-  {
-    const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-    dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
-    dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
-  };
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
       fe_values.reinit(cell);
       fe_values.get_function_gradients(locally_relevant_solution, grad_p);
+      if (jfo)
+      {
+        fe_values.get_function_values(locally_relevant_void, v);
+        fe_values.get_function_gradients(locally_relevant_void, grad_v);
+      }
+      const double tau = jfo ? streamline_tau(cell) : 0.0;
       cell_rhs = 0;
       for (unsigned int q = 0; q < n_q; ++q)
       {
         const Point<2> &x = fe_values.quadrature_point(q);
-        const double h = film.value(x.norm(), std::atan2(x[1], x[0]));
-        double dh, dh_dt;
-        perturbation_at(x, dh, dh_dt);
-        const Tensor<1, 2> dflux = (3 * h * h * dh / (12 * mu)) * grad_p[q] -
-                                   Tensor<1, 2>({-dh * mean_speed * x[1], dh * mean_speed * x[0]});
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        const double r = x.norm(), theta = std::atan2(x[1], x[0]);
+        const double h = film.value(r, theta);
+        const double dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
+        const double dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
+        const double s = jfo ? 1 - v[q] : 1.0;
+        const Tensor<1, 2> uc({-w * x[1], w * x[0]});
+        const Tensor<1, 2> dflux = (3 * h * h * dh / (12 * mu)) * grad_p[q] - s * dh * uc;
+        const double streamline = jfo ? -tau * dh * (uc * grad_v[q]) : 0.0;
+        for (unsigned int i = 0; i < n; ++i)
           cell_rhs(i) -=
               equation_scale *
-              (dflux * fe_values.shape_grad(i, q) + dh_dt * fe_values.shape_value(i, q)) *
+              (dflux * fe_values.shape_grad(i, q) + s * dh_dt * fe_values.shape_value(i, q) +
+               streamline * (uc * fe_values.shape_grad(i, q))) *
               fe_values.JxW(q);
       }
       cell->get_dof_indices(dofs);
       homogeneous.distribute_local_to_global(cell_rhs, dofs, rhs);
     }
   rhs.compress(VectorOperation::add);
+  if (cavitation.model == Cavitation::reynolds)
+  {
+    for (const auto i : active_set)
+      rhs[i] = 0; // frozen cavity: p stays p_cav there
+    rhs.compress(VectorOperation::insert);
+  }
 
-  TrilinosWrappers::MPI::Vector dp_owned(locally_owned_dofs, mpi_communicator);
-  solve_linear_system(rhs, dp_owned);
-  homogeneous.distribute(dp_owned);
-  TrilinosWrappers::MPI::Vector dp(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-  dp = dp_owned;
+  TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
+  solve_linear_system(rhs, du);
+  homogeneous.distribute(du);
 
-  // Integrate the perturbed loads (same definitions as compute_loads, linearised).
-  IndexSet inner_dofs, outer_dofs;
-  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), inner_dofs,
-                                  {AnnulusMesh::inner_boundary});
-  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_dofs,
-                                  {AnnulusMesh::outer_boundary});
-  const bool clip = cavitation.model == Cavitation::half_sommerfeld;
-  const double cpsi = std::cos(film.tilt_angle), spsi = std::sin(film.tilt_angle);
-  const double relative_speed = conditions.rotor_speed - conditions.stator_speed;
-  std::vector<double> p(n_q), dpv(n_q);
-  std::vector<Tensor<1, 2>> grad_dp(n_q);
-  std::vector<double> sum(8, 0.0);
-  Vector<double> local_residual(dofs_per_cell);
-  for (const auto &cell : dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
+  // Nodal perturbations of pressure and void fraction.
+  TrilinosWrappers::MPI::Vector dp_owned(locally_owned_dofs, mpi_communicator),
+      dv_owned(locally_owned_dofs, mpi_communicator);
+  for (const auto i : locally_owned_dofs)
+  {
+    if (!nonlinear)
+      dp_owned[i] = du[i];
+    else if (!jfo)
+      dp_owned[i] = pressure_scale * du[i];
+    else if (jfo_keep_pressure[i] > 0.5)
     {
-      fe_values.reinit(cell);
-      fe_values.get_function_values(locally_relevant_solution, p);
-      fe_values.get_function_gradients(locally_relevant_solution, grad_p);
-      fe_values.get_function_values(dp, dpv);
-      fe_values.get_function_gradients(dp, grad_dp);
-      cell->get_dof_indices(dofs);
-      local_residual = 0;
-      for (unsigned int q = 0; q < n_q; ++q)
-      {
-        const Point<2> &x = fe_values.quadrature_point(q);
-        const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-        const double h = film.value(r, theta), JxW = fe_values.JxW(q);
-        double dh, dh_dt;
-        perturbation_at(x, dh, dh_dt);
-        const double d = (clip && p[q] < cavitation.pressure) ? 0.0 : dpv[q];
-        sum[0] += d * JxW;
-        sum[1] += d * x[1] * JxW;
-        sum[2] += -d * x[0] * JxW;
-        sum[3] += -d * (x[0] * cpsi + x[1] * spsi) * JxW;
-        sum[4] += d * (x[1] * cpsi - x[0] * spsi) * JxW;
-        const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
-        const double ddp_dtheta = -x[1] * grad_dp[q][0] + x[0] * grad_dp[q][1];
-        sum[7] += (-mu * relative_speed * r * r * dh / (h * h) + 0.5 * dh * dp_dtheta +
-                   0.5 * h * ddp_dtheta) *
-                  JxW;
-        const double K = h * h * h / (12 * mu), dK = 3 * h * h * dh / (12 * mu);
-        const Tensor<1, 2> dflux = K * grad_dp[q] + dK * grad_p[q] -
-                                   Tensor<1, 2>({-dh * mean_speed * x[1], dh * mean_speed * x[0]});
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          local_residual(i) +=
-              (dflux * fe_values.shape_grad(i, q) + dh_dt * fe_values.shape_value(i, q)) * JxW;
-      }
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
-      {
-        if (inner_dofs.is_element(dofs[i]))
-          sum[5] += local_residual(i);
-        if (outer_dofs.is_element(dofs[i]))
-          sum[6] += local_residual(i);
-      }
+      dp_owned[i] = pressure_scale * du[i];
+      dv_owned[i] = jfo_elimination[i] * du[i];
     }
-  std::vector<double> total(sum.size());
-  MPI_Allreduce(sum.data(), total.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM,
-                mpi_communicator);
-  FilmLoads d;
-  d.force_z = total[0];
-  d.moment_x = total[1];
-  d.moment_y = total[2];
-  d.moment_restoring = total[3];
-  d.moment_transverse = total[4];
-  d.leakage_inner = -total[5];
-  d.leakage_outer = -total[6];
-  d.friction_torque = total[7];
-  return d;
+    else
+    {
+      dv_owned[i] = du[i];
+      dp_owned[i] = pressure_scale * jfo_elimination[i] * du[i];
+    }
+  }
+  dp_owned.compress(VectorOperation::insert);
+  dv_owned.compress(VectorOperation::insert);
+  TrilinosWrappers::MPI::Vector dp(locally_owned_dofs, locally_relevant_dofs, mpi_communicator),
+      dv(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  dp = dp_owned;
+  dv = dv_owned;
+  return integrate_loads(&perturbation, &dp, jfo ? &dv : nullptr);
 }
 
 FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,
@@ -487,9 +1165,17 @@ FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,
   conditions.validate();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
   timer.reset();
+  current_coarsening = coarsening;
+  coarse_iterations = 0;
   setup_system(coarsening);
   assemble_system();
   solve();
+  cavitation_iterations = 0;
+  cavitation_residual = 0;
+  pressure_scale = 1;
+  locally_relevant_void.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  if (cavitation.is_nonlinear())
+    solve_cavitation();
   return compute_loads();
 }
 
@@ -560,6 +1246,28 @@ std::string ReynoldsSolver::write_output(const std::string &directory) const
   data_out.attach_dof_handler(dof_handler);
   data_out.add_data_vector(locally_relevant_solution, "pressure");
   data_out.add_data_vector(locally_relevant_solution, postprocessor);
+  // Liquid fraction s = 1 - v (1 in the full film; nodal, so exact at the nodes) and an
+  // indicator of the cavitated region (1 where p <= p_cav or s < 1).
+  TrilinosWrappers::MPI::Vector liquid(locally_owned_dofs, mpi_communicator),
+      cavitated(locally_owned_dofs, mpi_communicator);
+  const double p_tol = 1e-9 * std::max(pressure_scale, 1.0);
+  for (const auto i : locally_owned_dofs)
+  {
+    const double v = cavitation.model == Cavitation::jfo ? locally_relevant_void[i] : 0.0;
+    liquid[i] = 1 - v;
+    const bool below = cavitation.model != Cavitation::none &&
+                       locally_relevant_solution[i] <= cavitation.pressure + p_tol;
+    cavitated[i] = (v > 0 || below) ? 1.0 : 0.0;
+  }
+  liquid.compress(VectorOperation::insert);
+  cavitated.compress(VectorOperation::insert);
+  TrilinosWrappers::MPI::Vector liquid_ghosted(locally_owned_dofs, locally_relevant_dofs,
+                                               mpi_communicator),
+      cavitated_ghosted(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  liquid_ghosted = liquid;
+  cavitated_ghosted = cavitated;
+  data_out.add_data_vector(liquid_ghosted, "liquid_fraction");
+  data_out.add_data_vector(cavitated_ghosted, "cavitated");
   Vector<float> subdomain(triangulation.n_active_cells());
   subdomain = triangulation.locally_owned_subdomain();
   data_out.add_data_vector(subdomain, "rank");

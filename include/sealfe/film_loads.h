@@ -25,6 +25,7 @@ struct FilmLoads
   double max_pressure = 0;
   double min_pressure = 0;
   double cavitated_fraction = 0;
+  double squeeze_flow = 0; ///< int s dh/dt dA (m^3/s): Q_in + Q_out + squeeze_flow = 0
   double area = 0; ///< area of the dam as integrated (m^2): the discrete domain for the FE model
 
   nlohmann::json to_json() const;

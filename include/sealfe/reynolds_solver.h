@@ -16,13 +16,16 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include <functional>
 #include <memory>
@@ -87,6 +90,11 @@ public:
   AnnulusMesh &mesh() { return mesh_parameters; }
   bool error_estimate_enabled() const { return estimate_error; }
   unsigned int linear_iterations() const { return last_iterations; }
+  /// Newton iterations and final relative mass residual of the cavitation solve (reynolds, jfo).
+  unsigned int nonlinear_iterations() const { return cavitation_iterations; }
+  /// Newton iterations spent on the coarser meshes that provided the JFO start (mesh sequencing).
+  unsigned int coarse_nonlinear_iterations() const { return coarse_iterations; }
+  double nonlinear_residual() const { return cavitation_residual; }
   /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
   std::map<std::string, double> stage_times() const;
 
@@ -111,6 +119,24 @@ private:
   unsigned int solve_linear_system(const dealii::TrilinosWrappers::MPI::Vector &rhs,
                                    dealii::TrilinosWrappers::MPI::Vector &x) const;
   void solve();
+  void solve_cavitation();
+  void solve_jfo(const double flow_scale);
+  double assemble_jfo_system(const dealii::TrilinosWrappers::MPI::Vector &a,
+                             const dealii::TrilinosWrappers::MPI::Vector &v,
+                             const bool with_jacobian,
+                             dealii::TrilinosWrappers::MPI::Vector &residual,
+                             dealii::TrilinosWrappers::MPI::Vector &newton_rhs);
+  void cell_cavitation_matrices(dealii::FEValues<2> &fe_values,
+                                const dealii::DoFHandler<2>::active_cell_iterator &cell,
+                                const bool with_void, dealii::FullMatrix<double> &A,
+                                dealii::FullMatrix<double> &G, dealii::Vector<double> &F) const;
+  double assemble_reynolds_system(const dealii::TrilinosWrappers::MPI::Vector &u,
+                                  const bool with_jacobian,
+                                  dealii::TrilinosWrappers::MPI::Vector &rhs);
+  double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
+  FilmLoads integrate_loads(const FilmPerturbation *perturbation,
+                            const dealii::TrilinosWrappers::MPI::Vector *dp,
+                            const dealii::TrilinosWrappers::MPI::Vector *dv) const;
   FilmLoads compute_loads() const;
 
   MPI_Comm mpi_communicator;
@@ -133,6 +159,22 @@ private:
   std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
 
   double equation_scale = 1; // 12 mu / C0^3
+
+  // Cavitation (reynolds, jfo) state.
+  dealii::AffineConstraints<double> homogeneous_constraints;
+  dealii::TrilinosWrappers::MPI::Vector locally_relevant_void; // v = 1 - liquid fraction
+  dealii::TrilinosWrappers::MPI::Vector reynolds_diagonal;
+  std::vector<dealii::types::global_dof_index> active_set; // reynolds: dofs held at p_cav
+  double pressure_scale = 1;
+  double jfo_flow_scale = 1;
+  std::vector<dealii::FullMatrix<double>> cell_A, cell_G; // JFO cell matrices (one solve)
+  std::vector<dealii::Vector<double>> cell_F;
+  dealii::TrilinosWrappers::MPI::Vector jfo_keep_pressure; // 1: node kept dp, 0: kept dv
+  dealii::TrilinosWrappers::MPI::Vector jfo_elimination;   // d(eliminated)/d(kept)
+  unsigned int cavitation_iterations = 0;
+  unsigned int coarse_iterations = 0; // Newton iterations spent on the mesh-sequencing levels
+  unsigned int current_coarsening = 0;
+  double cavitation_residual = 0;
   unsigned int last_iterations = 0;
   mutable dealii::TimerOutput timer;
 };
