@@ -387,6 +387,11 @@ void CoefficientTable::build_grid()
       throw std::runtime_error("coefficient table '" + source +
                                "' is not a full grid: no row for " + describe(p, axis_names));
     }
+  // Scales for relative errors. Entries that vanish by symmetry (the axial-tilt coupling of an
+  // axisymmetric film, its moments) are measured against the matrix or load they belong to,
+  // not against their own round-off: K and D entries against the largest entry of the
+  // dimensionally uniform matrix diag(1, 1/ro, 1/ro) K diag(1, 1/ro, 1/ro) converted back to
+  // the entry's units, moments against max(|moments|, |F_z| ro), leakages against both.
   for (unsigned int c = 0; c < column_names.size(); ++c)
   {
     double s = 0;
@@ -394,6 +399,46 @@ void CoefficientTable::build_grid()
       if (r.ok && std::isfinite(r.values[c]))
         s = std::max(s, std::abs(r.values[c]));
     column_scale[column_names[c]] = s;
+  }
+  auto raise = [this](const std::string &name, const double v)
+  {
+    if (column_scale.count(name))
+      column_scale[name] = std::max(column_scale[name], v);
+  };
+  auto get = [this](const Row &r, const std::string &name)
+  { return column_index.count(name) ? std::abs(r.values[column_index.at(name)]) : 0.0; };
+  for (const Row &r : grid_rows)
+  {
+    if (!r.ok)
+      continue;
+    const double ro = r.values[column_index.at("outer_radius")];
+    const double w[3] = {1, 1 / ro, 1 / ro};
+    for (const bool stiffness : {true, false})
+    {
+      double uniform = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          uniform = std::max(uniform,
+                             get(r, coefficient_table_format::coefficient_name(stiffness, i, j)) *
+                                 w[i] * w[j]);
+      if (!std::isfinite(uniform))
+        continue;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+        {
+          const std::string n = coefficient_table_format::coefficient_name(stiffness, i, j);
+          raise(n, uniform / (w[i] * w[j]));
+          raise("err_" + n, uniform / (w[i] * w[j]));
+        }
+    }
+    double moment = get(r, "force_z") * ro;
+    for (const char *m : {"moment_x", "moment_y", "moment_restoring", "moment_transverse"})
+      moment = std::max(moment, get(r, m));
+    for (const char *m : {"moment_x", "moment_y", "moment_restoring", "moment_transverse"})
+      raise(m, moment);
+    const double leakage = std::max(get(r, "leakage_inner"), get(r, "leakage_outer"));
+    raise("leakage_inner", leakage);
+    raise("leakage_outer", leakage);
   }
 }
 

@@ -124,7 +124,11 @@ public:
     OperatingPoint point;
     double stiffness = 0;
     double damping = 0;
-    /// |interpolated - reference| / max over the grid of |column| for every numeric column.
+    /// |interpolated - reference| / scale for every result column. The scale is the largest
+    /// magnitude over the grid rows of the column, or for quantities that can vanish by symmetry
+    /// of the group they belong to: a K or D entry is measured against the largest entry of its
+    /// (dimensionally uniform) matrix, a moment against max(|moments|, |F_z| ro), a leakage
+    /// against both leakages.
     std::map<std::string, double> columns;
   };
   static Error compare(const FilmCoefficients &interpolated, const FilmCoefficients &reference,
@@ -162,7 +166,7 @@ private:
   std::vector<std::vector<double>> axis_nodes;
   std::vector<unsigned int> node_to_row; // lexicographic node index (first axis fastest) -> row
   OperatingPoint constants;              // values of the non-swept quantities
-  std::map<std::string, double> column_scale; // max |value| over the grid rows, per column
+  std::map<std::string, double> column_scale; // per column, see Error::columns
 };
 
 } // namespace sealfe
