@@ -1,0 +1,84 @@
+// Benchmark (not a timed test): the cost of a full set of film coefficients (6 linearised solves,
+// ReynoldsSolver::linearized_loads) against the solve it linearises (ReynoldsSolver::run), and
+// the cost of the finite-difference check, over mesh sizes. Prints a table for
+// doc/coefficients.md; the only assertions are that the numbers are finite.
+#include <sealfe/coefficient_solver.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <vector>
+
+using namespace sealfe;
+
+namespace
+{
+double seconds(const std::chrono::steady_clock::time_point &t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+double median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+} // namespace
+
+TEST(CoefficientsBenchmark, CostOfACoefficientSetAgainstTheSolve)
+{
+  FilmThickness film; // the Varney & Green seal, slightly tilted (a general film)
+  film.tilt = 0.3 * film.clearance / film.outer_radius;
+  film.tilt_angle = 0.7;
+  const OperatingConditions conditions;
+  std::cout << "degree  radial x circ  dofs     solve [s]  6 linearised [s]  ratio  "
+               "per-solve [s]  FD 12 solves [s]\n";
+  for (const unsigned int degree : {2u, 3u})
+    for (const auto &[nr, nt] : std::vector<std::pair<unsigned int, unsigned int>>{
+             {4, 32}, {8, 64}, {8, 128}, {16, 256}, {32, 512}})
+    {
+      CoefficientSolver s(MPI_COMM_WORLD);
+      s.reynolds().polynomial_degree = degree;
+      s.reynolds().mesh().radial_cells = nr;
+      s.reynolds().mesh().circumferential_cells = nt;
+      s.reynolds().estimate_error = false;
+      const unsigned int repeats = nt <= 64 ? 9 : (nt <= 256 ? 5 : 3);
+      std::vector<double> t_solve, t_lin;
+      for (unsigned int k = 0; k < repeats; ++k)
+      {
+        auto t = std::chrono::steady_clock::now();
+        s.reynolds().run(film, conditions);
+        t_solve.push_back(seconds(t));
+        t = std::chrono::steady_clock::now();
+        for (const auto &shape :
+             {std::function<double(double, double)>([](double, double) { return 1.0; }),
+              std::function<double(double, double)>([](double r, double th)
+                                                    { return r * std::sin(th); }),
+              std::function<double(double, double)>([](double r, double th)
+                                                    { return -r * std::cos(th); })})
+        {
+          s.reynolds().linearized_loads({shape, {}});
+          s.reynolds().linearized_loads({{}, shape});
+        }
+        t_lin.push_back(seconds(t));
+      }
+      double t_fd = 0;
+      if (nt <= 256)
+      {
+        s.settings.method = CoefficientSettings::Method::finite_difference;
+        const CoefficientResult r = s.compute(film, conditions);
+        t_fd = r.coefficient_time;
+        s.settings.method = CoefficientSettings::Method::perturbation;
+      }
+      const double a = median(t_solve), b = median(t_lin);
+      std::cout << std::setw(6) << degree << std::setw(8) << nr << " x " << std::setw(4) << nt
+                << std::setw(9) << s.reynolds().n_dofs() << std::setw(12) << std::setprecision(4)
+                << a << std::setw(16) << b << std::setw(10) << b / a << std::setw(14) << b / 6
+                << std::setw(16) << t_fd << std::endl;
+      EXPECT_TRUE(std::isfinite(b / a));
+    }
+}
