@@ -184,6 +184,12 @@ std::string linearization_note(const CoefficientSettings::Method method,
     return "half-Sommerfeld: frozen cavitation boundary, the perturbed pressure counts only "
            "where p > p_cav; this is the derivative of the clipped loads (the clipped integrand "
            "is continuous at the boundary), except at quadrature points that sit on p_cav";
+  if (cavitation.model == Cavitation::reynolds)
+    return "Reynolds (Swift-Stieber): linearised at the converged active set, which is frozen "
+           "(the perturbed pressure is zero at the nodes held at p_cav)";
+  if (cavitation.model == Cavitation::jfo)
+    return "JFO: the Jacobian of the converged complementarity system at its cavitated set "
+           "(pressure and liquid fraction perturbed together; the set itself is not moved)";
   return "linearisation of the solver's cavitation model (ReynoldsSolver::linearized_loads)";
 }
 
