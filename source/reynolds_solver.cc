@@ -423,7 +423,8 @@ double ReynoldsSolver::assemble_jfo_system(const TrilinosWrappers::MPI::Vector &
                                            const TrilinosWrappers::MPI::Vector &v,
                                            const bool with_jacobian,
                                            TrilinosWrappers::MPI::Vector &residual,
-                                           TrilinosWrappers::MPI::Vector &newton_rhs)
+                                           TrilinosWrappers::MPI::Vector &newton_rhs,
+                                           const bool active_set_step)
 {
   const unsigned int n = fe->n_dofs_per_cell();
   // A, G, F do not depend on the state: computed once per solve and reused by every Newton
@@ -479,7 +480,18 @@ double ReynoldsSolver::assemble_jfo_system(const TrilinosWrappers::MPI::Vector &
         for (unsigned int j = 0; j < n; ++j)
         {
           const FischerBurmeister fb(local_a(j), local_v(j));
-          if (fb.keeps_pressure())
+          if (active_set_step)
+          {
+            // Active-set step: the node keeps the larger of its two unknowns, the other is set
+            // to zero (its current value moves to the right-hand side).
+            const bool keep_pressure = local_a(j) >= local_v(j);
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              J(i, j) = keep_pressure ? P * A(i, j) : G(i, j);
+              correction(i) += keep_pressure ? G(i, j) * local_v(j) : P * A(i, j) * local_a(j);
+            }
+          }
+          else if (fb.keeps_pressure())
           {
             const double ratio = fb.d_a / fb.d_b, shift = fb.value / fb.d_b;
             for (unsigned int i = 0; i < n; ++i)
@@ -635,6 +647,7 @@ void ReynoldsSolver::solve_jfo(const double flow_scale)
   TrilinosWrappers::MPI::Vector best_a(a_owned), best_v(v_owned);
   unsigned int steps_without_progress = 0;
   bool monotone = false;
+  unsigned int active_set_rounds = 0, next_polish = 0, polish_gap = 1;
 
   double merit = 0, mass_residual = 0, complementarity = 0;
   bool converged = false;
@@ -648,6 +661,72 @@ void ReynoldsSolver::solve_jfo(const double flow_scale)
     {
       converged = true;
       break;
+    }
+    if (it >= next_polish)
+    {
+      // Active-set polish: with the cavitated set fixed the discrete problem is linear. Starting
+      // from the set read off the current iterate (v > a), nodes whose solution is inconsistent
+      // (a < 0 on a pressure node, v < 0 on a cavitated one) switch set and the linear problem is
+      // solved again (primal-dual active set). A consistent solution is the exact JFO solution
+      // and ends the iteration at the next check; after a few unsuccessful rounds the polish is
+      // abandoned for this iteration and the FB-Newton step is taken.
+      TrilinosWrappers::MPI::Vector set_a(a_owned), set_v(v_owned);
+      bool consistent = false;
+      for (unsigned int round = 0; round < 40 && !consistent; ++round)
+      {
+        ta = set_a;
+        tv = set_v;
+        assemble_jfo_system(ta, tv, true, residual, newton_rhs, true);
+        ++active_set_rounds;
+        factorize();
+        w = 0;
+        solve_linear_system(newton_rhs, w);
+        homogeneous_constraints.set_zero(w);
+        unsigned int flips = 0;
+        for (const auto i : locally_owned_dofs)
+        {
+          if (homogeneous_constraints.is_constrained(i))
+          {
+            trial_a[i] = set_a[i];
+            trial_v[i] = set_v[i];
+            continue;
+          }
+          const bool keep_pressure = set_a[i] >= set_v[i];
+          const double value = (keep_pressure ? set_a[i] : set_v[i]) + w[i];
+          // round-off of the linear solve (values are O(1)) is not a set change
+          trial_a[i] = keep_pressure ? std::max(value, 0.0) : 0.0;
+          trial_v[i] = keep_pressure ? 0.0 : std::max(value, 0.0);
+          if (value < -1e-12)
+          {
+            // switch set: a tiny value of the other unknown marks the new set
+            ++flips;
+            set_a[i] = keep_pressure ? 0.0 : 1e-300;
+            set_v[i] = keep_pressure ? 1e-300 : 0.0;
+          }
+          else
+          {
+            set_a[i] = trial_a[i];
+            set_v[i] = trial_v[i];
+          }
+        }
+        trial_a.compress(VectorOperation::insert);
+        trial_v.compress(VectorOperation::insert);
+        set_a.compress(VectorOperation::insert);
+        set_v.compress(VectorOperation::insert);
+        consistent = Utilities::MPI::sum(flips, mpi_communicator) == 0;
+      }
+      // After a failed polish the next one waits twice as long (it costs up to 40 solves).
+      next_polish = it + polish_gap;
+      polish_gap *= 2;
+      if (consistent)
+      {
+        a_owned = trial_a;
+        v_owned = trial_v;
+        a = a_owned;
+        v = v_owned;
+        continue;
+      }
+      merit = assemble_jfo_system(a, v, true, residual, newton_rhs);
     }
     factorize();
     w = 0;
@@ -716,16 +795,13 @@ void ReynoldsSolver::solve_jfo(const double flow_scale)
         if (assemble_jfo_system(ta, tv, false, residual, newton_rhs) <= (1 - 1e-4 * step) * merit)
           break;
       }
-    if (std::getenv("SEALFE_DEBUG"))
-      std::cerr << "jfo it " << it << " dofs " << dof_handler.n_dofs() << " mass " << mass_residual
-                << " fb " << complementarity << " step " << step << " merit " << merit << " nop "
-                << steps_without_progress << "\n";
     a_owned.add(step, da);
     v_owned.add(step, dv);
     a = a_owned;
     v = v_owned;
   }
-  cavitation_iterations = it;
+  // Every linearised solve counts: FB-Newton steps and active-set rounds.
+  cavitation_iterations = it + active_set_rounds;
   cavitation_residual = std::max(mass_residual, complementarity);
   if (!converged)
   {
@@ -1182,6 +1258,30 @@ FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,
 std::map<std::string, double> ReynoldsSolver::stage_times() const
 {
   return timer.get_summary_data(TimerOutput::total_wall_time);
+}
+
+double ReynoldsSolver::volume_flow_through_circle(const double rho,
+                                                  const unsigned int n_points) const
+{
+  std::vector<Point<2>> points;
+  if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    for (unsigned int k = 0; k < n_points; ++k)
+    {
+      const double t = 2 * M_PI * (k + 0.5) / n_points;
+      points.emplace_back(rho * std::cos(t), rho * std::sin(t));
+    }
+  Utilities::MPI::RemotePointEvaluation<2> cache;
+  const auto gradients = VectorTools::point_gradients<1>(*mapping, dof_handler,
+                                                         locally_relevant_solution, points, cache);
+  double flow = 0;
+  for (unsigned int k = 0; k < points.size(); ++k)
+  {
+    const Point<2> &x = points[k];
+    const double h = film.value_xy(x[0], x[1]);
+    const double dp_dr = (gradients[k][0] * x[0] + gradients[k][1] * x[1]) / rho;
+    flow += -h * h * h / (12 * conditions.viscosity) * dp_dr * rho * 2 * M_PI / n_points;
+  }
+  return Utilities::MPI::sum(flow, mpi_communicator);
 }
 
 double ReynoldsSolver::l2_error(const Function<2> &exact) const

@@ -81,6 +81,12 @@ public:
   /// into `directory`; returns the PVD file name.
   std::string write_output(const std::string &directory) const;
 
+  /// Volume flow (m^3/s) outward through the circle r = rho, -int h^3/(12 mu) dp/dr rho dtheta
+  /// (the Couette flow is circumferential and does not cross it), by the midpoint rule on
+  /// `n_points` points. A direct flux integral, so it converges with the mesh only; the leakages
+  /// in FilmLoads are the consistent (conservative) ones.
+  double volume_flow_through_circle(const double rho, const unsigned int n_points = 2048) const;
+
   /// L2 norm of (p_h - exact) over the dam (for convergence tests).
   double l2_error(const dealii::Function<2> &exact) const;
 
@@ -125,7 +131,8 @@ private:
                              const dealii::TrilinosWrappers::MPI::Vector &v,
                              const bool with_jacobian,
                              dealii::TrilinosWrappers::MPI::Vector &residual,
-                             dealii::TrilinosWrappers::MPI::Vector &newton_rhs);
+                             dealii::TrilinosWrappers::MPI::Vector &newton_rhs,
+                             const bool active_set_step = false);
   void cell_cavitation_matrices(dealii::FEValues<2> &fe_values,
                                 const dealii::DoFHandler<2>::active_cell_iterator &cell,
                                 const bool with_void, dealii::FullMatrix<double> &A,

@@ -1,0 +1,199 @@
+// Cavitation in the finite-element solver (none, half-Sommerfeld, Reynolds, JFO):
+//  - without cavitation all models give the full-film solution to solver tolerance;
+//  - JFO conserves mass: inner + outer leakage = 0 to 1e-8 relative, and the flow through any
+//    circle of the dam equals the leakage (to the accuracy of a direct flux integral);
+//  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
+//  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
+//    10 kPa, waviness n = 1..12 up to 0.9 C0, and no supply (pi = po = p_cav) is refused.
+#include <sealfe/reynolds_solver.h>
+
+#include <deal.II/base/timer.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace sealfe;
+
+namespace
+{
+FilmLoads solve(const FilmThickness &film, const OperatingConditions &conditions,
+                const Cavitation model, const unsigned int nr = 8, const unsigned int nt = 128,
+                const unsigned int degree = 2, ReynoldsSolver *keep = nullptr)
+{
+  ReynoldsSolver local(MPI_COMM_WORLD);
+  ReynoldsSolver &s = keep ? *keep : local;
+  s.cavitation.model = model;
+  s.polynomial_degree = degree;
+  s.mesh().radial_cells = nr;
+  s.mesh().circumferential_cells = nt;
+  return s.run(film, conditions);
+}
+
+/// A wavy, tilted seal whose film cavitates over several arcs at a low sealed pressure.
+FilmThickness wavy_film(const double amplitude_over_c0 = 0.5, const double waves = 3)
+{
+  FilmThickness f;
+  f.coning = 0;
+  f.wave_amplitude = amplitude_over_c0 * f.clearance;
+  f.wave_number = waves;
+  f.tilt = 0.2 * f.clearance / f.outer_radius;
+  return f;
+}
+
+OperatingConditions low_pressure()
+{
+  OperatingConditions c;
+  c.inner_pressure = 2e4;
+  c.outer_pressure = 5e4;
+  return c;
+}
+} // namespace
+
+TEST(CavitationFE, WithoutCavitationAllModelsAreTheFullFilm)
+{
+  // Default seal with a small tilt and the inner pressure raised: p > 0 everywhere.
+  FilmThickness film;
+  film.tilt = 0.05 * film.clearance / film.outer_radius;
+  OperatingConditions conditions;
+  conditions.inner_pressure = 2e5;
+  const FilmLoads none = solve(film, conditions, Cavitation::none);
+  ASSERT_GT(none.min_pressure, 0);
+  for (const auto model : {Cavitation::half_sommerfeld, Cavitation::reynolds, Cavitation::jfo})
+  {
+    const FilmLoads c = solve(film, conditions, model);
+    EXPECT_NEAR(c.force_z, none.force_z, 1e-10 * std::abs(none.force_z));
+    EXPECT_NEAR(c.moment_x, none.moment_x, 1e-10 * std::abs(none.moment_x));
+    EXPECT_NEAR(c.moment_y, none.moment_y, 1e-10 * std::abs(none.moment_x));
+    EXPECT_NEAR(c.leakage_inner, none.leakage_inner, 1e-10 * std::abs(none.leakage_inner));
+    EXPECT_EQ(c.cavitated_fraction, 0.0);
+  }
+}
+
+TEST(CavitationFE, JfoConservesMassThroughEveryCircle)
+{
+  const FilmThickness film = wavy_film();
+  const OperatingConditions conditions = low_pressure();
+  ReynoldsSolver solver(MPI_COMM_WORLD);
+  const FilmLoads jfo = solve(film, conditions, Cavitation::jfo, 8, 128, 2, &solver);
+  std::cout << "jfo: cavitated fraction " << jfo.cavitated_fraction << ", Newton iterations "
+            << solver.nonlinear_iterations() << " (+" << solver.coarse_nonlinear_iterations()
+            << " on coarser meshes)\n";
+  ASSERT_GT(jfo.cavitated_fraction, 0.05); // the case does cavitate
+  const double Q = std::abs(jfo.leakage_outer);
+  EXPECT_LT(std::abs(jfo.leakage_inner + jfo.leakage_outer), 1e-8 * Q);
+  // The direct flux integral through interior circles agrees with the conservative leakage to
+  // its own (mesh) accuracy; measured 1e-3..1e-2 here, so a 3% bound.
+  for (const double f : {0.25, 0.5, 0.75})
+  {
+    const double rho = film.inner_radius + f * (film.outer_radius - film.inner_radius);
+    const double flow = solver.volume_flow_through_circle(rho);
+    std::cout << "flow through r = " << rho << ": " << flow << " vs leakage_outer "
+              << jfo.leakage_outer << "\n";
+    EXPECT_NEAR(flow / jfo.leakage_outer, 1.0, 0.03);
+  }
+  // Reynolds (Swift-Stieber) does not conserve mass at reformation: its imbalance is large.
+  const FilmLoads rey = solve(film, conditions, Cavitation::reynolds);
+  std::cout << "reynolds imbalance " << (rey.leakage_inner + rey.leakage_outer) / Q << "\n";
+  EXPECT_GT(std::abs(rey.leakage_inner + rey.leakage_outer), 1e-3 * Q);
+}
+
+TEST(CavitationFE, JfoMeshConvergence)
+{
+  // Three meshes, each twice as fine in r and theta; the observed order from successive
+  // differences (the reference-based study is tests/long/cavitation_convergence.cc).
+  const FilmThickness film = wavy_film();
+  const OperatingConditions conditions = low_pressure();
+  std::vector<FilmLoads> l;
+  for (const unsigned int k : {1u, 2u, 4u})
+    l.push_back(solve(film, conditions, Cavitation::jfo, 2 * k, 32 * k, 2));
+  auto order = [&](const char *name, double FilmLoads::*m)
+  {
+    const double d0 = std::abs(l[0].*m - l[1].*m), d1 = std::abs(l[1].*m - l[2].*m);
+    std::cout << name << ": " << l[0].*m << ", " << l[1].*m << ", " << l[2].*m
+              << "; observed order " << std::log2(d0 / d1) << "\n";
+    return std::log2(d0 / d1);
+  };
+  // The free boundary limits the asymptotic order to about 1 (the film fraction jumps at
+  // reformation); the force converges at least at that order on these meshes. The moment and
+  // the cavitated fraction are reported only: on these meshes they are not yet monotone
+  // (tests/long/cavitation_convergence.cc has the study against a fine reference).
+  EXPECT_GT(order("force_z", &FilmLoads::force_z), 0.8);
+  order("cavitated_fraction", &FilmLoads::cavitated_fraction);
+  order("moment_x", &FilmLoads::moment_x);
+}
+
+struct HardCase
+{
+  const char *name;
+  FilmThickness film;
+  OperatingConditions conditions;
+};
+
+class CavitationHardCases : public ::testing::TestWithParam<int>
+{
+};
+
+std::vector<HardCase> hard_cases()
+{
+  std::vector<HardCase> cases;
+  for (const double eps : {0.95, 0.99})
+  {
+    HardCase c{eps == 0.95 ? "tilt eps 0.95" : "tilt eps 0.99", FilmThickness(),
+               OperatingConditions()};
+    c.film.coning = 0;
+    c.film.tilt = eps * c.film.clearance / c.film.outer_radius;
+    c.conditions.inner_pressure = 0;
+    c.conditions.outer_pressure = 1e5;
+    cases.push_back(c);
+  }
+  {
+    HardCase c{"1e4 rad/s, 10 kPa", FilmThickness(), OperatingConditions()};
+    c.film.tilt = 0.5 * c.film.clearance / c.film.outer_radius;
+    c.conditions.rotor_speed = 1e4;
+    c.conditions.inner_pressure = 0;
+    c.conditions.outer_pressure = 1e4;
+    cases.push_back(c);
+  }
+  for (const double n : {1.0, 2.0, 6.0, 12.0})
+  {
+    HardCase c{"waviness", wavy_film(0.9, n), low_pressure()};
+    c.film.tilt = 0;
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+TEST_P(CavitationHardCases, ConvergesAndConservesMass)
+{
+  const HardCase c = hard_cases()[GetParam()];
+  ReynoldsSolver solver(MPI_COMM_WORLD);
+  dealii::Timer timer;
+  const FilmLoads l = solve(c.film, c.conditions, Cavitation::jfo, 8, 128, 2, &solver);
+  std::cout << c.name << " (waves " << c.film.wave_number << "): " << solver.nonlinear_iterations()
+            << " Newton iterations (+" << solver.coarse_nonlinear_iterations()
+            << " on coarser meshes), " << timer.wall_time() << " s, cavitated "
+            << l.cavitated_fraction << ", force " << l.force_z << " N\n";
+  EXPECT_TRUE(std::isfinite(l.force_z));
+  EXPECT_GT(l.cavitated_fraction, 0.0);
+  EXPECT_LT(std::abs(l.leakage_inner + l.leakage_outer),
+            1e-8 * std::max(std::abs(l.leakage_inner), std::abs(l.leakage_outer)));
+}
+
+INSTANTIATE_TEST_SUITE_P(Jfo, CavitationHardCases, ::testing::Range(0, 7));
+
+TEST(CavitationFE, NoSupplyIsRefusedClearly)
+{
+  FilmThickness film = wavy_film();
+  OperatingConditions conditions;
+  conditions.inner_pressure = conditions.outer_pressure = 0; // = p_cav
+  try
+  {
+    solve(film, conditions, Cavitation::jfo);
+    FAIL() << "expected an error";
+  }
+  catch (std::runtime_error &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("not unique"), std::string::npos) << e.what();
+  }
+}
