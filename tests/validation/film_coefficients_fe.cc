@@ -114,6 +114,12 @@ TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesInFullFilm)
   // (~ (1e-4)^2 (n/C0 * C0)^2 with n ~ 3 from h^3: ~1e-7) and round-off ~1e-13/1e-4 = 1e-9.
   EXPECT_LT(ek, 1e-5);
   EXPECT_LT(ed, 1e-5);
+  // D = B^T A^-1 B with the symmetric Reynolds matrix A and B_jk = int w_j phi_k (the load
+  // functional of a mode equals its squeeze source): symmetric to round-off.
+  const Matrix3 D = uniform(p.coefficients.damping, ro);
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < i; ++j)
+      EXPECT_NEAR(D[i][j], D[j][i], 1e-9 * max_abs(D));
   // The loads of the operating point are the same solve.
   EXPECT_NEAR(p.loads.force_z, d.loads.force_z, 1e-12 * std::abs(p.loads.force_z));
 }
