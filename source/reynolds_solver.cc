@@ -1071,9 +1071,13 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
           const double dK = 3 * h * h * dh / (12 * mu);
           flux = K * grad_dp[q] + dK * grad_p[q] - (s * dh - dv[q] * h) * uc;
           volume = s * dh_t - dv[q] * h_t;
-          streamline = -tau * (h * (uc * grad_dv[q]) + dv[q] * u_grad_h + dh * (uc * grad_v[q]));
-          // (the perturbation of u . grad h in the streamline term is omitted: v vanishes where
-          // it matters at the boundaries, and it is second order in the cavity)
+          const double d = 1e-6;
+          const double ddh_dtheta =
+              perturbation->dh
+                  ? (perturbation->dh(r, theta + d) - perturbation->dh(r, theta - d)) / (2 * d)
+                  : 0.0;
+          streamline = -tau * (h * (uc * grad_dv[q]) + dv[q] * u_grad_h + dh * (uc * grad_v[q]) +
+                               v[q] * w * ddh_dtheta);
         }
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           local_residual(i) +=
@@ -1130,25 +1134,32 @@ FilmLoads ReynoldsSolver::compute_loads() const
 
 FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation) const
 {
+  return linearized_loads(std::vector<FilmPerturbation>{perturbation})[0];
+}
+
+std::vector<FilmLoads>
+ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbations) const
+{
   TimerOutput::Scope t(timer, "linearized solve");
   const QGauss<2> quadrature(polynomial_degree + 2); // the assembly's rule
   FEValues<2> fe_values(*mapping, *fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
   const unsigned int n_q = quadrature.size(), n = fe->n_dofs_per_cell();
+  const unsigned int n_perturbations = perturbations.size();
   std::vector<double> v(n_q);
   std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q);
   std::vector<types::global_dof_index> dofs(n);
-  Vector<double> cell_rhs(n);
+  std::vector<Vector<double>> cell_rhs(n_perturbations, Vector<double>(n));
   const double mu = conditions.viscosity, w = conditions.mean_speed();
   const bool nonlinear = cavitation.is_nonlinear();
   const bool jfo = cavitation.model == Cavitation::jfo;
 
-  // d(residual)/dh in the perturbation direction, scaled like the system by 12 mu / C0^3; the
+  // d(residual)/dh in each perturbation direction, scaled like the system by 12 mu / C0^3; the
   // perturbed unknown has homogeneous Dirichlet data. For reynolds/jfo the matrix is the
-  // Jacobian of the converged active set (the exact derivative where that set is locally
-  // constant: the cavitation boundary moves with the perturbation through the Jacobian's
-  // switched columns, jfo, or stays frozen, reynolds).
+  // Jacobian of the converged state (jfo: the FB-Newton Jacobian, whose eliminations move the
+  // cavity boundary with the perturbation; reynolds: the active set, frozen). One cell loop for
+  // all right-hand sides, one solve each with the factorisation of run().
   AffineConstraints<double> homogeneous(locally_relevant_dofs);
   DoFTools::make_hanging_node_constraints(dof_handler, homogeneous);
   for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
@@ -1156,7 +1167,8 @@ FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation)
                                              Functions::ZeroFunction<2>(), homogeneous);
   homogeneous.close();
 
-  TrilinosWrappers::MPI::Vector rhs(locally_owned_dofs, mpi_communicator);
+  std::vector<TrilinosWrappers::MPI::Vector> rhs(
+      n_perturbations, TrilinosWrappers::MPI::Vector(locally_owned_dofs, mpi_communicator));
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
@@ -1168,67 +1180,89 @@ FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation)
         fe_values.get_function_gradients(locally_relevant_void, grad_v);
       }
       const double tau = jfo ? streamline_tau(cell) : 0.0;
-      cell_rhs = 0;
+      for (auto &c : cell_rhs)
+        c = 0;
       for (unsigned int q = 0; q < n_q; ++q)
       {
         const Point<2> &x = fe_values.quadrature_point(q);
         const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-        const double h = film.value(r, theta);
-        const double dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
-        const double dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
+        const double h = film.value(r, theta), JxW = fe_values.JxW(q);
         const double s = jfo ? 1 - v[q] : 1.0;
         const Tensor<1, 2> uc({-w * x[1], w * x[0]});
-        const Tensor<1, 2> dflux = (3 * h * h * dh / (12 * mu)) * grad_p[q] - s * dh * uc;
-        const double streamline = jfo ? -tau * dh * (uc * grad_v[q]) : 0.0;
-        for (unsigned int i = 0; i < n; ++i)
-          cell_rhs(i) -=
-              equation_scale *
-              (dflux * fe_values.shape_grad(i, q) + s * dh_dt * fe_values.shape_value(i, q) +
-               streamline * (uc * fe_values.shape_grad(i, q))) *
-              fe_values.JxW(q);
+        for (unsigned int k = 0; k < n_perturbations; ++k)
+        {
+          const FilmPerturbation &perturbation = perturbations[k];
+          const double dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
+          const double dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
+          const Tensor<1, 2> dflux = (3 * h * h * dh / (12 * mu)) * grad_p[q] - s * dh * uc;
+          double streamline = 0;
+          if (jfo)
+          {
+            // d/dh of -tau (u . grad(v h)): -tau (dh u . grad v + v u . grad dh), with
+            // u . grad dh = w d(dh)/dtheta by a central difference (dh is smooth in theta).
+            const double d = 1e-6;
+            const double ddh_dtheta =
+                perturbation.dh
+                    ? (perturbation.dh(r, theta + d) - perturbation.dh(r, theta - d)) / (2 * d)
+                    : 0.0;
+            streamline = -tau * (dh * (uc * grad_v[q]) + v[q] * w * ddh_dtheta);
+          }
+          for (unsigned int i = 0; i < n; ++i)
+            cell_rhs[k](i) -=
+                equation_scale *
+                (dflux * fe_values.shape_grad(i, q) + s * dh_dt * fe_values.shape_value(i, q) +
+                 streamline * (uc * fe_values.shape_grad(i, q))) *
+                JxW;
+        }
       }
       cell->get_dof_indices(dofs);
-      homogeneous.distribute_local_to_global(cell_rhs, dofs, rhs);
+      for (unsigned int k = 0; k < n_perturbations; ++k)
+        homogeneous.distribute_local_to_global(cell_rhs[k], dofs, rhs[k]);
     }
-  rhs.compress(VectorOperation::add);
-  if (cavitation.model == Cavitation::reynolds)
-  {
-    for (const auto i : active_set)
-      rhs[i] = 0; // frozen cavity: p stays p_cav there
-    rhs.compress(VectorOperation::insert);
-  }
 
-  TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
-  solve_linear_system(rhs, du);
-  homogeneous.distribute(du);
-
-  // Nodal perturbations of pressure and void fraction.
-  TrilinosWrappers::MPI::Vector dp_owned(locally_owned_dofs, mpi_communicator),
-      dv_owned(locally_owned_dofs, mpi_communicator);
-  for (const auto i : locally_owned_dofs)
+  std::vector<FilmLoads> result;
+  for (unsigned int k = 0; k < n_perturbations; ++k)
   {
-    if (!nonlinear)
-      dp_owned[i] = du[i];
-    else if (!jfo)
-      dp_owned[i] = pressure_scale * du[i];
-    else if (jfo_keep_pressure[i] > 0.5)
+    rhs[k].compress(VectorOperation::add);
+    if (cavitation.model == Cavitation::reynolds)
     {
-      dp_owned[i] = pressure_scale * du[i];
-      dv_owned[i] = jfo_elimination[i] * du[i];
+      for (const auto i : active_set)
+        rhs[k][i] = 0; // frozen cavity: p stays p_cav there
+      rhs[k].compress(VectorOperation::insert);
     }
-    else
+    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
+    solve_linear_system(rhs[k], du);
+    homogeneous.distribute(du);
+
+    // Nodal perturbations of pressure and void fraction.
+    TrilinosWrappers::MPI::Vector dp_owned(locally_owned_dofs, mpi_communicator),
+        dv_owned(locally_owned_dofs, mpi_communicator);
+    for (const auto i : locally_owned_dofs)
     {
-      dv_owned[i] = du[i];
-      dp_owned[i] = pressure_scale * jfo_elimination[i] * du[i];
+      if (!nonlinear)
+        dp_owned[i] = du[i];
+      else if (!jfo)
+        dp_owned[i] = pressure_scale * du[i];
+      else if (jfo_keep_pressure[i] > 0.5)
+      {
+        dp_owned[i] = pressure_scale * du[i];
+        dv_owned[i] = jfo_elimination[i] * du[i];
+      }
+      else
+      {
+        dv_owned[i] = du[i];
+        dp_owned[i] = pressure_scale * jfo_elimination[i] * du[i];
+      }
     }
+    dp_owned.compress(VectorOperation::insert);
+    dv_owned.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector dp(locally_owned_dofs, locally_relevant_dofs, mpi_communicator),
+        dv(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    dp = dp_owned;
+    dv = dv_owned;
+    result.push_back(integrate_loads(&perturbations[k], &dp, jfo ? &dv : nullptr));
   }
-  dp_owned.compress(VectorOperation::insert);
-  dv_owned.compress(VectorOperation::insert);
-  TrilinosWrappers::MPI::Vector dp(locally_owned_dofs, locally_relevant_dofs, mpi_communicator),
-      dv(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-  dp = dp_owned;
-  dv = dv_owned;
-  return integrate_loads(&perturbation, &dp, jfo ? &dv : nullptr);
+  return result;
 }
 
 FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,

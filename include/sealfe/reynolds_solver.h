@@ -76,6 +76,9 @@ public:
   /// result are derivatives (force_z: N per unit q, leakage: m^3/s per unit q, ...). With
   /// half-Sommerfeld the cavity boundary is frozen: dp counts only where p > p_cav.
   FilmLoads linearized_loads(const FilmPerturbation &perturbation) const;
+  /// The same for several directions at once: one assembly loop for all right-hand sides and one
+  /// solve each with the same factorisation (what the 6-direction coefficient set uses).
+  std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
 
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
   /// into `directory`; returns the PVD file name.
