@@ -363,7 +363,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
     for (std::string c; std::getline(header, c, ',');)
       columns.push_back(c);
     summary["columns"] = columns;
-    summary["cpu_time_per_point"] = total_time / plan.points.size();
+    summary["time_per_point"] = total_time / plan.points.size(); // s, one point on one rank
     summary["sweep_wall_time"] = max_rank_time;
 
     // Read the file back (the reader the dynamics module uses) and report the interpolation
