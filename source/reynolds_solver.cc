@@ -948,7 +948,7 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
   const unsigned int n_q = quadrature.size(), dofs_per_cell = fe->n_dofs_per_cell();
-  std::vector<double> p(n_q), v(n_q), dp(n_q, 0.0), dv(n_q, 0.0);
+  std::vector<double> p(n_q), v(n_q), dp(n_q, 0.0), dv(n_q, 0.0), indicator(n_q, 0.0);
   std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q), grad_dp(n_q), grad_dv(n_q);
   std::vector<types::global_dof_index> dofs(dofs_per_cell);
 
@@ -967,6 +967,20 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
   const double cpsi = std::cos(film.tilt_angle), spsi = std::sin(film.tilt_angle);
   // Below this the film counts as cavitated (pressure at p_cav, or void fraction above zero).
   const double p_tol = 1e-9 * std::max(pressure_scale, 1.0);
+
+  TrilinosWrappers::MPI::Vector cavitation_indicator;
+  if (!perturbation && cavitation.is_nonlinear())
+  {
+    TrilinosWrappers::MPI::Vector owned(locally_owned_dofs, mpi_communicator);
+    for (const auto i : locally_owned_dofs)
+      owned[i] =
+          (jfo ? locally_relevant_void[i] > 0 : locally_relevant_solution[i] <= p_cav + p_tol)
+              ? 1.0
+              : 0.0;
+    owned.compress(VectorOperation::insert);
+    cavitation_indicator.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    cavitation_indicator = owned;
+  }
 
   // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area, cavitated area,
   // squeeze flow
@@ -998,6 +1012,8 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
         fe_values.get_function_gradients(*dv_nodal, grad_dv);
       }
       const double tau = jfo ? streamline_tau(cell) : 0.0;
+      if (!perturbation && cavitation.is_nonlinear())
+        fe_values.get_function_values(cavitation_indicator, indicator);
       cell->get_dof_indices(dofs);
       local_residual = 0;
       for (unsigned int q = 0; q < n_q; ++q)
@@ -1030,8 +1046,10 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
         sum[3] += -load_p * (x[0] * cpsi + x[1] * spsi) * JxW;
         sum[4] += load_p * (x[1] * cpsi - x[0] * spsi) * JxW;
         sum[8] += JxW;
-        if (clipped || (jfo && v[q] > 1e-9) ||
-            (cavitation.model == Cavitation::reynolds && p[q] < p_cav + p_tol))
+        // Cavitated area: half-Sommerfeld where the clipped pressure applies; reynolds and jfo
+        // where the interpolated nodal cavitation indicator is at least 1/2 (nodal, so that the
+        // overshoot of higher-order interpolants at the cavity edge does not count).
+        if (clipped || (cavitation.is_nonlinear() && indicator[q] >= 0.5))
           sum[9] += JxW;
 
         // Shear on the rotor face: Couette (carried by the liquid fraction) + Poiseuille, as a

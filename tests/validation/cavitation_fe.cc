@@ -115,11 +115,11 @@ TEST(CavitationFE, JfoMeshConvergence)
     return std::log2(d0 / d1);
   };
   // The free boundary limits the asymptotic order to about 1 (the film fraction jumps at
-  // reformation); the force converges at least at that order on these meshes. The moment and
-  // the cavitated fraction are reported only: on these meshes they are not yet monotone
-  // (tests/long/cavitation_convergence.cc has the study against a fine reference).
+  // reformation); force and cavitated fraction converge at least at that order on these meshes
+  // (measured 3.0 and 1.5). The moment is reported only: on these meshes it is not yet
+  // monotone (tests/long/cavitation_convergence.cc has the study against a fine reference).
   EXPECT_GT(order("force_z", &FilmLoads::force_z), 0.8);
-  order("cavitated_fraction", &FilmLoads::cavitated_fraction);
+  EXPECT_GT(order("cavitated_fraction", &FilmLoads::cavitated_fraction), 0.8);
   order("moment_x", &FilmLoads::moment_x);
 }
 
