@@ -587,13 +587,28 @@ FilmCoefficients CoefficientTable::coefficients(const OperatingPoint &query) con
   OperatingPoint p = query;
   const bool stator_swept =
       std::find(axis_names.begin(), axis_names.end(), "stator_speed") != axis_names.end();
-  if (!stator_swept && p.stator_speed != constants.stator_speed)
+  const bool mapped = !stator_swept && p.stator_speed != constants.stator_speed;
+  if (mapped)
   {
     // Same mean speed (omega1 + omega2)/2 at the table's stator speed.
     p.rotor_speed = query.rotor_speed + query.stator_speed - constants.stator_speed;
     p.stator_speed = constants.stator_speed;
   }
-  const std::vector<double> x = locate(p);
+  std::vector<double> x;
+  try
+  {
+    x = locate(p);
+  }
+  catch (std::runtime_error &e)
+  {
+    if (!mapped)
+      throw;
+    std::ostringstream s;
+    s << e.what() << " (asked for rotor speed " << query.rotor_speed << " and stator speed "
+      << query.stator_speed << " rad/s, answered at the same mean speed with the table's stator "
+      << "speed " << constants.stator_speed << " rad/s)";
+    throw std::runtime_error(s.str());
+  }
   FilmCoefficients k;
   k.level = 1;
   k.model = "coefficient table '" + source + "' (" +

@@ -267,6 +267,14 @@ TEST(CoefficientTable, TwoRotatingRingsAreAnsweredAtTheirMeanSpeed)
   EXPECT_EQ(m.level, 1);
   EXPECT_NEAR(m.tilt_cross_stiffness(), 750 * e.tilt_direct_damping(),
               1e-12 * std::abs(m.tilt_cross_stiffness()));
+  // Outside the table's mean-speed range: the message says how the query was mapped.
+  const std::string message = thrown_message([&] { model(-3000, -3000); });
+  EXPECT_NE(message.find("rotor_speed = -6000 is outside the table's range [-4000, 4000]"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("stator speed -3000 rad/s, answered at the same mean speed"),
+            std::string::npos)
+      << message;
 }
 
 TEST(CoefficientTable, QueriesOutsideTheTableAreRefused)
