@@ -7,6 +7,7 @@
 #include <sealfe/output.h>
 #include <sealfe/response.h>
 #include <sealfe/reynolds_solver.h>
+#include <sealfe/seal_dynamics.h>
 #include <sealfe/stability.h>
 #include <sealfe/table_sweep.h>
 
@@ -20,6 +21,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -42,6 +44,37 @@ struct SubCommand
   std::function<nlohmann::json(ParameterHandler &, const std::string &, MPI_Comm)> run;
 };
 
+/// Level 2 of the film for `sealfe stability` and `sealfe response` (Seal dynamics/Film model =
+/// finite element): the coefficient solver of the prm's Discretization, Cavitation, Roughness and
+/// Coefficients subsections. These sub-commands run on rank 0 only, so the solver works on
+/// MPI_COMM_SELF. Empty for the other film models (their prm needs no FE settings).
+FilmCoefficientProvider finite_element_film(ParameterHandler &prm)
+{
+  prm.enter_subsection("Seal dynamics");
+  const bool wanted = prm.get("Film model") == "finite element";
+  prm.leave_subsection();
+  if (!wanted)
+    return {};
+  auto solver = std::make_shared<CoefficientSolver>(MPI_COMM_SELF);
+  solver->parse_parameters(prm);
+  auto count = std::make_shared<unsigned int>(0);
+  return [solver, count](const FilmThickness &film, const OperatingConditions &conditions)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    FilmCoefficients k = solver->coefficients(film, conditions);
+    std::ostringstream model;
+    model << k.model << ", " << solver->reynolds().n_dofs() << " dofs, degree "
+          << solver->reynolds().degree();
+    k.model = model.str();
+    std::cerr << "sealfe: level-2 film coefficients #" << ++*count << " at rotor speed "
+              << conditions.rotor_speed << ", stator speed " << conditions.stator_speed
+              << " rad/s (" << solver->reynolds().n_dofs() << " dofs, "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+              << " s)" << std::endl;
+    return k;
+  };
+}
+
 std::vector<SubCommand> sub_commands()
 {
   return {
@@ -52,18 +85,27 @@ std::vector<SubCommand> sub_commands()
       {"table", "coefficients and loads over a grid of operating points -> CSV", true, true,
        table::declare_parameters, table::run},
       {"stability", "linear stability, eigenvalues and threshold speeds -> summary.json, CSV", true,
-       false, stability::declare_parameters,
+       false,
+       [](ParameterHandler &prm)
+       {
+         stability::declare_parameters(prm);
+         CoefficientSolver::declare_parameters(prm); // Film model = finite element
+       },
        [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
        {
          output::make_directory(dir);
-         return stability::run(prm, dir);
+         return stability::run(prm, dir, finite_element_film(prm));
        }},
       {"response", "steady-state forced response over a speed range -> CSV, PNG", true, false,
-       response::declare_parameters,
+       [](ParameterHandler &prm)
+       {
+         response::declare_parameters(prm);
+         CoefficientSolver::declare_parameters(prm); // Film model = finite element
+       },
        [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
        {
          output::make_directory(dir);
-         return response::run(prm, dir);
+         return response::run(prm, dir, finite_element_film(prm));
        }},
       {"annular", "annular (radial-clearance) seal stiffness, leakage, optimum -> JSON, CSV", false,
        false, annular::declare_parameters,
@@ -233,8 +275,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   OperatingConditions conditions;
   film.parse_parameters(prm);
   conditions.parse_parameters(prm);
-  film.validate();
-  conditions.validate();
+  conditions.validate(); // the film is validated by the model (touch-down may be allowed)
   prm.enter_subsection("Film model");
   const std::string model = prm.get("Model");
   prm.leave_subsection();
@@ -294,6 +335,10 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
                              {"coarse_level_iterations", solver.coarse_nonlinear_iterations()},
                              {"final_residual", solver.nonlinear_residual()}};
   }
+  summary["roughness"] = {{"model", solver.flow_factors.is_smooth() ? "none" : "patir-cheng"},
+                          {"composite_roughness", solver.flow_factors.composite_roughness()},
+                          {"clamped_evaluations", solver.flow_factors.clamp_count()},
+                          {"contact_model", solver.contact.enabled() ? "gw-ceb" : "none"}};
   nlohmann::json timings = solver.stage_times();
 
   // Error estimate: a second solve on a mesh twice as coarse (estimate_load_errors).

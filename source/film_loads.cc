@@ -1,5 +1,7 @@
 #include <sealfe/film_loads.h>
 
+#include <cmath>
+
 namespace sealfe
 {
 nlohmann::json FilmLoads::to_json() const
@@ -17,6 +19,13 @@ nlohmann::json FilmLoads::to_json() const
           {"min_pressure", min_pressure},
           {"cavitated_fraction", cavitated_fraction},
           {"area", area},
-          {"squeeze_flow", squeeze_flow}};
+          {"squeeze_flow", squeeze_flow},
+          {"contact_force", contact_force},
+          {"contact_moment_x", contact_moment_x},
+          {"contact_moment_y", contact_moment_y},
+          {"contact_area_fraction", contact_area_fraction},
+          {"min_film_over_sigma", std::isfinite(min_film_over_sigma)
+                                      ? nlohmann::json(min_film_over_sigma)
+                                      : nlohmann::json(nullptr)}};
 }
 } // namespace sealfe

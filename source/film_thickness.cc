@@ -110,7 +110,7 @@ FilmThickness::Extremum FilmThickness::maximum() const
   return scan(*this, [](double a, double b) { return a > b; });
 }
 
-void FilmThickness::validate() const
+void FilmThickness::validate(const bool allow_touch_down) const
 {
   auto fail = [](const std::string &what) { throw std::runtime_error(what); };
   for (double v : {inner_radius, outer_radius, clearance, coning, tilt, tilt_angle, wave_amplitude,
@@ -133,12 +133,13 @@ void FilmThickness::validate() const
     fail(s.str());
   }
   const Extremum m = minimum();
-  if (!(m.value > 0))
+  if (!(m.value > 0) && !allow_touch_down)
   {
     std::ostringstream s;
     s << "Geometry: the film touches down: h = " << m.value << " m (overlap " << -m.value
       << " m) at r = " << m.r << " m, theta = " << m.theta
-      << " rad; reduce tilt/waviness or raise the clearance";
+      << " rad; reduce tilt/waviness or raise the clearance (or model rough faces in contact: "
+         "Roughness/Model = patir-cheng with Contact/Model = gw-ceb)";
     fail(s.str());
   }
 }

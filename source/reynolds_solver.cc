@@ -46,6 +46,8 @@ void ReynoldsSolver::declare_parameters(ParameterHandler &prm)
 {
   AnnulusMesh::declare_parameters(prm);
   CavitationSettings::declare_parameters(prm);
+  FlowFactors::declare_parameters(prm);
+  AsperityContact::declare_parameters(prm);
   prm.enter_subsection("Discretization");
   prm.declare_entry("Polynomial degree", "2", Patterns::Integer(1, 6),
                     "Degree k of the continuous Lagrange elements (and of the curved mapping).");
@@ -65,6 +67,8 @@ void ReynoldsSolver::parse_parameters(ParameterHandler &prm)
 {
   mesh_parameters.parse_parameters(prm);
   cavitation.parse_parameters(prm);
+  flow_factors.parse_parameters(prm);
+  contact.parse_parameters(prm);
   prm.enter_subsection("Discretization");
   polynomial_degree = prm.get_integer("Polynomial degree");
   const std::string s = prm.get("Linear solver");
@@ -138,9 +142,6 @@ void ReynoldsSolver::assemble_system()
   Vector<double> cell_rhs(dofs_per_cell);
   std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
 
-  const double C0 = film.clearance;
-  const double mean_speed = conditions.mean_speed();
-
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
@@ -149,23 +150,16 @@ void ReynoldsSolver::assemble_system()
       fe_values.reinit(cell);
       for (const unsigned int q : fe_values.quadrature_point_indices())
       {
-        const Point<2> &x = fe_values.quadrature_point(q);
-        const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-        const double h = film.value(r, theta);
-        const double k = Utilities::fixed_power<3>(h / C0);
-        // h u_mean, with u_mean = w_mean * (-y, x)
-        const Tensor<1, 2> hu({-h * mean_speed * x[1], h * mean_speed * x[0]});
-        double volume_source = film.d_dt(r, theta);
-        if (source)
-          volume_source += source(x);
+        const LocalFilm f = local_film(fe_values.quadrature_point(q));
+        const Tensor<2, 2> K = equation_scale * f.K;
         const double JxW = fe_values.JxW(q);
         for (const unsigned int i : fe_values.dof_indices())
         {
           const Tensor<1, 2> grad_i = fe_values.shape_grad(i, q);
           for (const unsigned int j : fe_values.dof_indices())
-            cell_matrix(i, j) += k * (grad_i * fe_values.shape_grad(j, q)) * JxW;
+            cell_matrix(i, j) += (grad_i * (K * fe_values.shape_grad(j, q))) * JxW;
           cell_rhs(i) +=
-              equation_scale * (hu * grad_i - volume_source * fe_values.shape_value(i, q)) * JxW;
+              equation_scale * (f.c * grad_i - f.squeeze * fe_values.shape_value(i, q)) * JxW;
         }
       }
       cell->get_dof_indices(local_dof_indices);
@@ -239,6 +233,63 @@ void ReynoldsSolver::solve()
   locally_relevant_solution = solution;
 }
 
+ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
+{
+  LocalFilm f;
+  f.r = x.norm();
+  f.theta = std::atan2(x[1], x[0]);
+  f.h = film.value(f.r, f.theta);
+  const double mu = conditions.viscosity;
+  const double w_mean = conditions.mean_speed();
+  const double w_half_difference = 0.5 * (conditions.rotor_speed - conditions.stator_speed);
+  const Tensor<1, 2> er({x[0] / f.r, x[1] / f.r}), et({-x[1] / f.r, x[0] / f.r});
+  const Tensor<1, 2> rotation({-x[1], x[0]}); // r e_theta
+  f.u = w_mean * rotation;
+  double h_t = film.d_dt(f.r, f.theta);
+  if (source)
+    h_t += source(x);
+  const double dh_dtheta = film.d_dtheta(f.r, f.theta);
+
+  if (flow_factors.is_smooth())
+  {
+    const double k = f.h * f.h * f.h / (12 * mu);
+    f.K = k * unit_symmetric_tensor<2>();
+    f.dK_dh = (3 * k / f.h) * unit_symmetric_tensor<2>();
+    f.c = f.h * f.u;
+    f.dc_dh = f.u;
+    f.dc_div_factor = w_mean;
+    f.squeeze = h_t;
+    f.dsqueeze_dht = 1;
+  }
+  else
+  {
+    // Average Reynolds equation of Patir & Cheng in the polar frame: radial and circumferential
+    // pressure flow factors, expected gap h_T in the Couette and squeeze terms, shear flow
+    // sigma phi_s (u1 - u2)/2 along e_theta. The flow coefficient uses the nominal h, held at
+    // 0.5 sigma (the fits' validity limit) where the faces are in asperity contact.
+    const auto ff = flow_factors.film_factors(f.h);
+    const double sigma = flow_factors.composite_roughness();
+    const double h_flow = std::max(f.h, 0.5 * sigma);
+    const double k = h_flow * h_flow * h_flow / (12 * mu);
+    const double dk = f.h > 0.5 * sigma ? 3 * k / h_flow : 0.0;
+    f.K = k * (ff.phi_r.value * outer_product(er, er) + ff.phi_theta.value * outer_product(et, et));
+    f.dK_dh = (dk * ff.phi_r.value + k * ff.phi_r.d_dh) * outer_product(er, er) +
+              (dk * ff.phi_theta.value + k * ff.phi_theta.d_dh) * outer_product(et, et);
+    const double omega_eff = w_mean * ff.h_T.value + w_half_difference * sigma * ff.phi_s.value;
+    f.dc_div_factor = w_mean * ff.h_T.d_dh + w_half_difference * sigma * ff.phi_s.d_dh;
+    f.c = omega_eff * rotation;
+    f.dc_dh = f.dc_div_factor * rotation;
+    f.squeeze = ff.h_T.d_dh * h_t;
+    f.dsqueeze_dht = ff.h_T.d_dh;
+  }
+  // div(omega_eff(h) r e_theta) = omega_eff'(h) dh/dtheta (r e_theta is divergence free)
+  f.c_div = f.dc_div_factor * dh_dtheta;
+  const ValueAndSlope pc = contact.contact_pressure(f.h);
+  f.contact_pressure = pc.value;
+  f.dcontact_dh = pc.d_dh;
+  return f;
+}
+
 double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator &cell) const
 {
   // Streamline-diffusion parameter for the transport of the void fraction in the cavity: full
@@ -289,7 +340,6 @@ void ReynoldsSolver::cell_cavitation_matrices(FEValues<2> &fe_values,
   // A: pressure flow, F: full-film Couette + squeeze, G: void-fraction terms (see above). All
   // scaled by 12 mu / C0^3 like the full-film system.
   const unsigned int n = fe->n_dofs_per_cell();
-  const double C0 = film.clearance, w = conditions.mean_speed();
   const double tau = with_void ? streamline_tau(cell) : 0.0;
   fe_values.reinit(cell);
   A = 0;
@@ -297,30 +347,25 @@ void ReynoldsSolver::cell_cavitation_matrices(FEValues<2> &fe_values,
   F = 0;
   for (const unsigned int q : fe_values.quadrature_point_indices())
   {
-    const Point<2> &x = fe_values.quadrature_point(q);
-    const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-    const double h = film.value(r, theta), k = Utilities::fixed_power<3>(h / C0);
-    const Tensor<1, 2> uc({-w * x[1], w * x[0]});
-    const double u_grad_h = w * film.d_dtheta(r, theta);
-    double h_t = film.d_dt(r, theta);
-    if (source)
-      h_t += source(x);
+    const LocalFilm f = local_film(fe_values.quadrature_point(q));
+    const Tensor<2, 2> K = equation_scale * f.K;
     const double JxW = fe_values.JxW(q);
     for (unsigned int i = 0; i < n; ++i)
     {
       const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
       const double vi = fe_values.shape_value(i, q);
-      const double u_grad_i = uc * gi;
-      F(i) += equation_scale * (h * u_grad_i - h_t * vi) * JxW;
+      const double c_grad_i = f.c * gi, u_grad_i = f.u * gi;
+      F(i) += equation_scale * (c_grad_i - f.squeeze * vi) * JxW;
       for (unsigned int j = 0; j < n; ++j)
       {
-        A(i, j) += k * (gi * fe_values.shape_grad(j, q)) * JxW;
+        A(i, j) += (gi * (K * fe_values.shape_grad(j, q))) * JxW;
         if (with_void)
         {
+          // div(phi_j c) = c . grad phi_j + phi_j div c: the transported void content
           const double vj = fe_values.shape_value(j, q);
-          const double u_grad_jh = h * (uc * fe_values.shape_grad(j, q)) + vj * u_grad_h;
+          const double div_jc = f.c * fe_values.shape_grad(j, q) + vj * f.c_div;
           G(i, j) +=
-              equation_scale * (vj * (h * u_grad_i - h_t * vi) - tau * u_grad_jh * u_grad_i) * JxW;
+              equation_scale * (vj * (c_grad_i - f.squeeze * vi) - tau * div_jc * u_grad_i) * JxW;
         }
       }
     }
@@ -958,8 +1003,7 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
   DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_dofs,
                                   {AnnulusMesh::outer_boundary});
 
-  const double mu = conditions.viscosity, w = conditions.mean_speed();
-  const double relative_speed = conditions.rotor_speed - conditions.stator_speed;
+  const double mu = conditions.viscosity;
   const double p_ref = conditions.reference_pressure;
   const bool clip = cavitation.model == Cavitation::half_sommerfeld;
   const bool jfo = cavitation.model == Cavitation::jfo;
@@ -983,8 +1027,8 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
   }
 
   // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area, cavitated area,
-  // squeeze flow
-  std::vector<double> sum(11, 0.0);
+  // squeeze flow, contact force, contact Mx, contact My, real contact area
+  std::vector<double> sum(15, 0.0);
   double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
   Vector<double> local_residual(dofs_per_cell);
 
@@ -1019,15 +1063,10 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
       for (unsigned int q = 0; q < n_q; ++q)
       {
         const Point<2> &x = fe_values.quadrature_point(q);
-        const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-        const double h = film.value(r, theta), JxW = fe_values.JxW(q);
-        const Tensor<1, 2> uc({-w * x[1], w * x[0]});
-        const double u_grad_h = w * film.d_dtheta(r, theta);
-        double h_t = film.d_dt(r, theta);
-        if (source)
-          h_t += source(x);
+        const LocalFilm f = local_film(x);
+        const double r = f.r, theta = f.theta, h = f.h, JxW = fe_values.JxW(q);
+        const Tensor<1, 2> &uc = f.u;
         const double s = 1 - v[q]; // liquid fraction
-        const double K = h * h * h / (12 * mu);
         double dh = 0, dh_t = 0;
         if (perturbation)
         {
@@ -1036,66 +1075,82 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
         }
 
         // Pressure in the loads: half-Sommerfeld clips it (and freezes the clipped region in
-        // the linearisation); the other models use the solved field.
+        // the linearisation); the other models use the solved field. The asperity contact
+        // pressure (zero without a contact model) adds to it.
         const bool clipped = clip && p[q] < p_cav;
+        const double contact_p = perturbation ? f.dcontact_dh * dh : f.contact_pressure;
         const double load_p =
-            perturbation ? (clipped ? 0.0 : dp[q]) : (clipped ? p_cav : p[q]) - p_ref;
+            (perturbation ? (clipped ? 0.0 : dp[q]) : (clipped ? p_cav : p[q]) - p_ref) + contact_p;
         sum[0] += load_p * JxW;
         sum[1] += load_p * x[1] * JxW;
         sum[2] += -load_p * x[0] * JxW;
         sum[3] += -load_p * (x[0] * cpsi + x[1] * spsi) * JxW;
         sum[4] += load_p * (x[1] * cpsi - x[0] * spsi) * JxW;
         sum[8] += JxW;
+        sum[11] += contact_p * JxW;
+        sum[12] += contact_p * x[1] * JxW;
+        sum[13] += -contact_p * x[0] * JxW;
+        if (!perturbation && contact.enabled())
+          sum[14] += contact.real_contact_area_fraction(h) * JxW;
         // Cavitated area: half-Sommerfeld where the clipped pressure applies; reynolds and jfo
         // where the interpolated nodal cavitation indicator is at least 1/2 (nodal, so that the
         // overshoot of higher-order interpolants at the cavity edge does not count).
         if (clipped || (cavitation.is_nonlinear() && indicator[q] >= 0.5))
           sum[9] += JxW;
 
-        // Shear on the rotor face: Couette (carried by the liquid fraction) + Poiseuille, as a
-        // torque resisting the rotor: r (s mu (w1 - w2) r / h + (h/2) (1/r) dp/dtheta).
+        // Shear on the rotor face, as a torque resisting the rotor, -r tau_1: Couette part
+        // (carried by the liquid fraction) and Poiseuille part; with roughness the Patir-Cheng
+        // shear-stress factors (FlowFactors::rotor_shear_stress).
         const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
         const double s_clamped = std::clamp(s, 0.0, 1.0);
+        const double u1 = conditions.rotor_speed * r, u2 = conditions.stator_speed * r;
+        auto couette = [&](double hh)
+        { return -flow_factors.rotor_shear_stress(std::max(hh, 1e-300), mu, u1, u2, 0.0) * r; };
+        auto poiseuille = [&](double hh, double dpdx)
+        { return -flow_factors.rotor_shear_stress(std::max(hh, 1e-300), mu, 0.0, 0.0, dpdx) * r; };
         if (!perturbation)
         {
-          sum[7] += (s_clamped * mu * relative_speed * r * r / h + 0.5 * h * dp_dtheta) * JxW;
-          sum[10] += s * h_t * JxW;
+          sum[7] += (s_clamped * couette(h) + poiseuille(h, dp_dtheta / r)) * JxW;
+          sum[10] += s * f.squeeze * JxW;
           p_min = std::min(p_min, p[q]);
           p_max = std::max(p_max, p[q]);
         }
         else
         {
           const double ddp_dtheta = -x[1] * grad_dp[q][0] + x[0] * grad_dp[q][1];
-          sum[7] += (-dv[q] * mu * relative_speed * r * r / h -
-                     s * mu * relative_speed * r * r * dh / (h * h) + 0.5 * dh * dp_dtheta +
-                     0.5 * h * ddp_dtheta) *
+          const double eps = 1e-7 * h;
+          const double dcouette = (couette(h + eps) - couette(h - eps)) / (2 * eps);
+          const double dpois =
+              (poiseuille(h + eps, dp_dtheta / r) - poiseuille(h - eps, dp_dtheta / r)) / (2 * eps);
+          sum[7] += (-dv[q] * couette(h) + s * dcouette * dh + dpois * dh +
+                     poiseuille(h, ddp_dtheta / r)) *
                     JxW;
-          sum[10] += (-dv[q] * h_t + s * dh_t) * JxW;
+          sum[10] += (-dv[q] * f.squeeze + s * f.dsqueeze_dht * dh_t) * JxW;
         }
 
         // Residual of the unconstrained weak form in m^3/s (its linearisation with a
-        // perturbation): R_i = int (K grad p - s h u) . grad phi_i + s dh/dt phi_i
-        //                      + tau (u . grad(v h))(u . grad phi_i).
+        // perturbation): R_i = int (K grad p - s c) . grad phi_i + s dh_T/dt phi_i
+        //                      - tau div(v c) (u . grad phi_i).
         Tensor<1, 2> flux;
         double volume, streamline;
         if (!perturbation)
         {
-          flux = K * grad_p[q] - s * h * uc;
-          volume = s * h_t;
-          streamline = -tau * (h * (uc * grad_v[q]) + v[q] * u_grad_h);
+          flux = f.K * grad_p[q] - s * f.c;
+          volume = s * f.squeeze;
+          streamline = -tau * (f.c * grad_v[q] + v[q] * f.c_div);
         }
         else
         {
-          const double dK = 3 * h * h * dh / (12 * mu);
-          flux = K * grad_dp[q] + dK * grad_p[q] - (s * dh - dv[q] * h) * uc;
-          volume = s * dh_t - dv[q] * h_t;
+          flux = f.K * grad_dp[q] + dh * (f.dK_dh * grad_p[q]) - (s * dh * f.dc_dh - dv[q] * f.c);
+          volume = s * f.dsqueeze_dht * dh_t - dv[q] * f.squeeze;
           const double d = 1e-6;
           const double ddh_dtheta =
               perturbation->dh
                   ? (perturbation->dh(r, theta + d) - perturbation->dh(r, theta - d)) / (2 * d)
                   : 0.0;
-          streamline = -tau * (h * (uc * grad_dv[q]) + dv[q] * u_grad_h + dh * (uc * grad_v[q]) +
-                               v[q] * w * ddh_dtheta);
+          // (second derivatives of the flow factors in h are neglected here)
+          streamline = -tau * (f.c * grad_dv[q] + dv[q] * f.c_div + dh * (f.dc_dh * grad_v[q]) +
+                               v[q] * f.dc_div_factor * ddh_dtheta);
         }
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           local_residual(i) +=
@@ -1133,9 +1188,16 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
   loads.leakage_outer = -total[6];
   loads.friction_torque = total[7];
   loads.squeeze_flow = total[10];
+  loads.contact_force = total[11];
+  loads.contact_moment_x = total[12];
+  loads.contact_moment_y = total[13];
   if (!perturbation)
   {
     loads.area = total[8];
+    loads.contact_area_fraction = total[14] / total[8];
+    loads.min_film_over_sigma = flow_factors.is_smooth() && !contact.enabled()
+                                    ? std::numeric_limits<double>::infinity()
+                                    : film.minimum().value / flow_factors.composite_roughness();
     loads.cavitated_fraction = total[9] / total[8];
     loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
     loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
@@ -1169,7 +1231,6 @@ ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbati
   std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q);
   std::vector<types::global_dof_index> dofs(n);
   std::vector<Vector<double>> cell_rhs(n_perturbations, Vector<double>(n));
-  const double mu = conditions.viscosity, w = conditions.mean_speed();
   const bool nonlinear = cavitation.is_nonlinear();
   const bool jfo = cavitation.model == Cavitation::jfo;
 
@@ -1202,35 +1263,33 @@ ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbati
         c = 0;
       for (unsigned int q = 0; q < n_q; ++q)
       {
-        const Point<2> &x = fe_values.quadrature_point(q);
-        const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-        const double h = film.value(r, theta), JxW = fe_values.JxW(q);
+        const LocalFilm f = local_film(fe_values.quadrature_point(q));
+        const double r = f.r, theta = f.theta, JxW = fe_values.JxW(q);
         const double s = jfo ? 1 - v[q] : 1.0;
-        const Tensor<1, 2> uc({-w * x[1], w * x[0]});
         for (unsigned int k = 0; k < n_perturbations; ++k)
         {
           const FilmPerturbation &perturbation = perturbations[k];
           const double dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
           const double dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
-          const Tensor<1, 2> dflux = (3 * h * h * dh / (12 * mu)) * grad_p[q] - s * dh * uc;
+          const Tensor<1, 2> dflux = dh * (f.dK_dh * grad_p[q]) - s * dh * f.dc_dh;
           double streamline = 0;
           if (jfo)
           {
-            // d/dh of -tau (u . grad(v h)): -tau (dh u . grad v + v u . grad dh), with
-            // u . grad dh = w d(dh)/dtheta by a central difference (dh is smooth in theta).
+            // d/dh of -tau div(v c): -tau (dh c' . grad v + v omega_eff' d(dh)/dtheta), the
+            // theta derivative of dh by a central difference (dh is smooth in theta).
             const double d = 1e-6;
             const double ddh_dtheta =
                 perturbation.dh
                     ? (perturbation.dh(r, theta + d) - perturbation.dh(r, theta - d)) / (2 * d)
                     : 0.0;
-            streamline = -tau * (dh * (uc * grad_v[q]) + v[q] * w * ddh_dtheta);
+            streamline = -tau * (dh * (f.dc_dh * grad_v[q]) + v[q] * f.dc_div_factor * ddh_dtheta);
           }
           for (unsigned int i = 0; i < n; ++i)
-            cell_rhs[k](i) -=
-                equation_scale *
-                (dflux * fe_values.shape_grad(i, q) + s * dh_dt * fe_values.shape_value(i, q) +
-                 streamline * (uc * fe_values.shape_grad(i, q))) *
-                JxW;
+            cell_rhs[k](i) -= equation_scale *
+                              (dflux * fe_values.shape_grad(i, q) +
+                               s * f.dsqueeze_dht * dh_dt * fe_values.shape_value(i, q) +
+                               streamline * (f.u * fe_values.shape_grad(i, q))) *
+                              JxW;
         }
       }
       cell->get_dof_indices(dofs);
@@ -1289,8 +1348,13 @@ FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,
 {
   film = film_in;
   conditions = conditions_in;
-  film.validate();
+  flow_factors.validate();
+  contact.validate();
+  // With rough faces in asperity contact a film that touches down is carried by the asperities
+  // (h is the distance between the mean planes, seed 001 Eq. 24; it may be <= 0).
+  film.validate(contact.enabled() && !flow_factors.is_smooth());
   conditions.validate();
+  flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
   timer.reset();
   current_coarsening = coarsening;
@@ -1329,9 +1393,9 @@ double ReynoldsSolver::volume_flow_through_circle(const double rho,
   for (unsigned int k = 0; k < points.size(); ++k)
   {
     const Point<2> &x = points[k];
-    const double h = film.value_xy(x[0], x[1]);
-    const double dp_dr = (gradients[k][0] * x[0] + gradients[k][1] * x[1]) / rho;
-    flow += -h * h * h / (12 * conditions.viscosity) * dp_dr * rho * 2 * M_PI / n_points;
+    const LocalFilm f = local_film(x);
+    const Tensor<1, 2> er({x[0] / rho, x[1] / rho});
+    flow += -(er * (f.K * gradients[k])) * rho * 2 * M_PI / n_points;
   }
   return Utilities::MPI::sum(flow, mpi_communicator);
 }
@@ -1351,8 +1415,8 @@ namespace
 class FilmPostprocessor : public DataPostprocessor<2>
 {
 public:
-  FilmPostprocessor(const FilmThickness &film, const OperatingConditions &conditions)
-      : film(film), conditions(conditions)
+  explicit FilmPostprocessor(std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film)
+      : film(std::move(film))
   {
   }
   void evaluate_scalar_field(const DataPostprocessorInputs::Scalar<2> &in,
@@ -1360,13 +1424,13 @@ public:
   {
     for (unsigned int q = 0; q < in.evaluation_points.size(); ++q)
     {
-      const Point<2> &x = in.evaluation_points[q];
-      const double h = film.value(x.norm(), std::atan2(x[1], x[0]));
-      const double K = h * h * h / (12 * conditions.viscosity);
-      const double w = conditions.mean_speed();
-      out[q](0) = h;
-      out[q](1) = -K * in.solution_gradients[q][0] - h * w * x[1];
-      out[q](2) = -K * in.solution_gradients[q][1] + h * w * x[0];
+      // q = -K grad p + c: the full-film flux (in a JFO cavity the Couette part carries the
+      // liquid fraction: multiply c by liquid_fraction there; the pressure part is zero).
+      const ReynoldsSolver::LocalFilm f = film(in.evaluation_points[q]);
+      const Tensor<1, 2> flux = -(f.K * in.solution_gradients[q]) + f.c;
+      out[q](0) = f.h;
+      out[q](1) = flux[0];
+      out[q](2) = flux[1];
     }
   }
   std::vector<std::string> get_names() const override
@@ -1386,14 +1450,13 @@ public:
   }
 
 private:
-  const FilmThickness &film;
-  const OperatingConditions &conditions;
+  std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film;
 };
 } // namespace
 
 std::string ReynoldsSolver::write_output(const std::string &directory) const
 {
-  FilmPostprocessor postprocessor(film, conditions);
+  FilmPostprocessor postprocessor([this](const Point<2> &x) { return local_film(x); });
   DataOut<2> data_out;
   data_out.attach_dof_handler(dof_handler);
   data_out.add_data_vector(locally_relevant_solution, "pressure");

@@ -25,7 +25,12 @@ struct FilmLoads
   double max_pressure = 0;
   double min_pressure = 0;
   double cavitated_fraction = 0;
-  double squeeze_flow = 0; ///< int s dh/dt dA (m^3/s): Q_in + Q_out + squeeze_flow = 0
+  double contact_force = 0;         ///< N, part of force_z carried by the asperities
+  double contact_moment_x = 0;      ///< N m, part of moment_x
+  double contact_moment_y = 0;      ///< N m, part of moment_y
+  double contact_area_fraction = 0; ///< real contact area / nominal area
+  double min_film_over_sigma = 0;   ///< min h / composite roughness (inf when smooth)
+  double squeeze_flow = 0;          ///< int s dh/dt dA (m^3/s): Q_in + Q_out + squeeze_flow = 0
   double area = 0; ///< area of the dam as integrated (m^2): the discrete domain for the FE model
 
   nlohmann::json to_json() const;

@@ -24,8 +24,9 @@ public:
   void parse_parameters(dealii::ParameterHandler &prm);
 
   /// Throws std::runtime_error naming the problem if the geometry is impossible (ri >= ro,
-  /// C0 <= 0, ...) or the film touches down (min h <= 0, with where and by how much).
-  void validate() const;
+  /// C0 <= 0, ...) or the film touches down (min h <= 0, with where and by how much) unless
+  /// `allow_touch_down` (rough faces with an asperity contact model carry it).
+  void validate(const bool allow_touch_down = false) const;
 
   double value(const double r, const double theta) const
   {

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <sealfe/annulus_mesh.h>
+#include <sealfe/asperity_contact.h>
 #include <sealfe/cavitation.h>
 #include <sealfe/film_loads.h>
 #include <sealfe/film_thickness.h>
+#include <sealfe/flow_factors.h>
 #include <sealfe/operating_conditions.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -80,6 +82,19 @@ public:
   /// solve each with the same factorisation (what the 6-direction coefficient set uses).
   std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
 
+  /// The film's coefficients at one point, for every term of the (average) Reynolds equation.
+  struct LocalFilm
+  {
+    double r, theta, h;
+    dealii::Tensor<2, 2> K, dK_dh; // pressure-flow tensor h^3/(12 mu) diag(phi_r, phi_theta)
+    dealii::Tensor<1, 2> u;        // mean surface velocity (w1 + w2)/2 r e_theta
+    dealii::Tensor<1, 2> c, dc_dh; // Couette flux h_T u + (u1 - u2)/2 sigma phi_s e_theta
+    double c_div, dc_div_factor;   // div c, and d(omega_eff)/dh (div of a perturbed c)
+    double squeeze, dsqueeze_dht;  // d h_T/dt = h_T'(h) dh/dt, and h_T'(h)
+    double contact_pressure, dcontact_dh;
+  };
+  LocalFilm local_film(const dealii::Point<2> &x) const;
+
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
   /// into `directory`; returns the PVD file name.
   std::string write_output(const std::string &directory) const;
@@ -115,6 +130,11 @@ public:
   /// Cavitation treatment of the loads: none (full film) or half-Sommerfeld (the full-film
   /// pressure clipped at p_cav when integrating force, moments and friction).
   CavitationSettings cavitation;
+  /// Rough faces: Patir-Cheng average flow (subsection "Roughness"; Model = none is the smooth
+  /// Reynolds equation) and GW/CEB asperity contact (subsection "Contact"), whose mean contact
+  /// pressure adds to the film pressure in force and moments.
+  FlowFactors flow_factors;
+  AsperityContact contact;
 
   unsigned int polynomial_degree = 2;
   LinearSolver linear_solver = LinearSolver::automatic;
