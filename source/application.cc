@@ -159,6 +159,51 @@ std::string one_line(const std::exception &e)
   return line;
 }
 
+/// deal.II mangles entry names in its JSON output (non-alphanumerics as _XX hex).
+std::string demangle(const std::string &s)
+{
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s[i] == '_' && i + 2 < s.size() + 0 && std::isxdigit(s[i + 1]) && std::isxdigit(s[i + 2]))
+    {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    }
+    else
+      out += s[i];
+  return out;
+}
+
+/// `--print-parameters`: every entry in prm syntax with its default value, pattern and
+/// documentation (deal.II's own styles print either the defaults or the patterns, not both).
+void print_parameters(const ParameterHandler &prm, std::ostream &out)
+{
+  std::ostringstream json_text;
+  prm.print_parameters(json_text, ParameterHandler::JSON);
+  const auto json = nlohmann::json::parse(json_text.str());
+  std::function<void(const nlohmann::json &, const std::string &)> print =
+      [&](const nlohmann::json &node, const std::string &indent)
+  {
+    for (const auto &[key, value] : node.items()) // entries first, then subsections
+      if (value.contains("value"))
+      {
+        out << indent << "# " << value.value("documentation", std::string()) << "\n"
+            << indent << "#   default: " << value.value("default_value", std::string())
+            << "   pattern: " << value.value("pattern_description", std::string()) << "\n"
+            << indent << "set " << demangle(key) << " = "
+            << value.value("default_value", std::string()) << "\n\n";
+      }
+    for (const auto &[key, value] : node.items())
+      if (!value.contains("value"))
+      {
+        out << indent << "subsection " << demangle(key) << "\n";
+        print(value, indent + "  ");
+        out << indent << "end\n\n";
+      }
+  };
+  print(json, "");
+}
+
 void print_usage(std::ostream &out)
 {
   out << "usage: sealfe <sub-command> [file.prm]\n"
@@ -196,7 +241,7 @@ int run_application(int argc, char **argv)
       ParameterHandler prm;
       declare_common(prm, command);
       if (root)
-        prm.print_parameters(std::cout, ParameterHandler::PRM);
+        print_parameters(prm, std::cout);
       return 0;
     }
 
