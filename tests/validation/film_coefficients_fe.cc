@@ -9,6 +9,7 @@
 #include <sealfe/coefficient_solver.h>
 #include <sealfe/green_etsion.h>
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <gtest/gtest.h>
@@ -122,6 +123,48 @@ TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesInFullFilm)
       EXPECT_NEAR(D[i][j], D[j][i], 1e-9 * max_abs(D));
   // The loads of the operating point are the same solve.
   EXPECT_NEAR(p.loads.force_z, d.loads.force_z, 1e-12 * std::abs(p.loads.force_z));
+}
+
+TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesWithRoughFaces)
+{
+  // Patir-Cheng average flow (anisotropic pattern gamma = 3, sigma = 0.2 um, so H = h/sigma >= 3:
+  // inside the fits, which are smooth in h) with GW/CEB asperity contact in the loads, on the
+  // tilted full-film operating point: the perturbation method must be the derivative of the
+  // discrete loads, to the same 1e-5 as the smooth film.
+  dealii::ParameterHandler prm;
+  CoefficientSolver::declare_parameters(prm);
+  prm.enter_subsection("Roughness");
+  prm.set("Model", "patir-cheng");
+  prm.set("Composite roughness", "2e-7");
+  prm.set("Surface pattern", "3");
+  prm.leave_subsection();
+  prm.enter_subsection("Contact");
+  prm.set("Model", "gw-ceb");
+  prm.leave_subsection();
+  const FilmThickness film = tilted_film(0.4);
+  OperatingConditions conditions;
+  conditions.rotor_speed = 1500;
+  CoefficientResult results[2];
+  for (const auto method :
+       {CoefficientSettings::Method::perturbation, CoefficientSettings::Method::finite_difference})
+  {
+    CoefficientSolver s(MPI_COMM_WORLD);
+    s.parse_parameters(prm);
+    s.reynolds().polynomial_degree = 2;
+    s.reynolds().mesh().radial_cells = 6;
+    s.reynolds().mesh().circumferential_cells = 64;
+    s.reynolds().estimate_error = false;
+    s.settings.method = method;
+    results[method == CoefficientSettings::Method::finite_difference] = s.compute(film, conditions);
+  }
+  const CoefficientResult &p = results[0], &d = results[1];
+  const double ro = film.outer_radius;
+  const double ek = relative_difference(p.coefficients.stiffness, d.coefficients.stiffness, ro);
+  const double ed = relative_difference(p.coefficients.damping, d.coefficients.damping, ro);
+  std::cout << "rough faces with contact: perturbation vs central differences: stiffness " << ek
+            << ", damping " << ed << "; K_zz " << p.coefficients.stiffness[0][0] << "\n";
+  EXPECT_LT(ek, 1e-5);
+  EXPECT_LT(ed, 1e-5);
 }
 
 namespace
