@@ -162,7 +162,9 @@ TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesWithRoughFaces)
   const double ek = relative_difference(p.coefficients.stiffness, d.coefficients.stiffness, ro);
   const double ed = relative_difference(p.coefficients.damping, d.coefficients.damping, ro);
   std::cout << "rough faces with contact: perturbation vs central differences: stiffness " << ek
-            << ", damping " << ed << "; K_zz " << p.coefficients.stiffness[0][0] << "\n";
+            << ", damping " << ed << "; K_zz " << p.coefficients.stiffness[0][0]
+            << ", contact force " << p.loads.contact_force << " of " << p.loads.force_z << " N\n";
+  EXPECT_GT(p.loads.contact_force, 0); // the contact model does act
   EXPECT_LT(ek, 1e-5);
   EXPECT_LT(ed, 1e-5);
 }
