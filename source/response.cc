@@ -103,10 +103,12 @@ nlohmann::json runs(const std::vector<double> &speeds, const std::vector<bool> &
 }
 } // namespace
 
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory)
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
+                   const FilmCoefficientProvider &finite_element)
 {
   SealDynamicsInput input;
   input.parse_parameters(prm);
+  input.finite_element = finite_element;
   input.validate();
   prm.enter_subsection("Forced response");
   const bool swept_rotor = prm.get("Swept speed") == "Rotor speed";
@@ -123,8 +125,12 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     throw std::runtime_error(s.str());
   }
 
-  const AngularSealDynamics dynamics = input.build();
   const double fixed = swept_rotor ? input.operating.stator_speed : input.operating.rotor_speed;
+  // Level 2: the FE coefficients at a few speeds of the sweep, interpolated in between.
+  const SweepFilm film = input.sweep_film(swept_rotor ? AngularSealDynamics::SweptRing::rotor
+                                                      : AngularSealDynamics::SweptRing::stator,
+                                          fixed, from, to);
+  const AngularSealDynamics dynamics = input.build(film.model);
   const double limit = input.contact_tilt();
   const double C0 = input.geometry.clearance, ro = input.geometry.outer_radius;
 
@@ -178,6 +184,11 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   summary["film_model"] = fc.model;
   summary["film_model_level"] = input.film_model_level();
   summary["film_coefficients"] = fc.to_json();
+  summary["film_speed_dependence"] = film.description;
+  if (film.interpolation)
+    // the interpolation error around the speed of the largest relative tilt
+    summary["film_speed_dependence"]["interpolation_check"] =
+        film.interpolation->check_report({speed_at_peak}, input.geometry.outer_radius);
   summary["swept_speed"] = swept_rotor ? "rotor" : "stator";
   summary["speed_range"] = {from, to};
   summary["contact_tilt"] = limit;

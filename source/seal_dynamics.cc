@@ -1,3 +1,4 @@
+#include <sealfe/coefficient_table.h>
 #include <sealfe/green_etsion.h>
 #include <sealfe/seal_dynamics.h>
 
@@ -873,9 +874,29 @@ void SealDynamicsInput::declare_parameters(dealii::ParameterHandler &prm)
                     "non-spinning stator and the shaft + seat as the rotor ring.");
   prm.declare_entry("Film model", "closed form",
                     dealii::Patterns::Selection("closed form|table|finite element"),
-                    "Film stiffness and damping: closed form = level 0, Green & Etsion narrow "
-                    "seal (k11, d11, (omega1 + omega2)/2 d11); table = level 1 and finite element "
-                    "= level 2 are not available to the dynamics yet.");
+                    "Film stiffness and damping. closed form = level 0: Green & Etsion narrow "
+                    "seal (k11, d11, (omega1 + omega2)/2 d11), untilted coned face, full film. "
+                    "table = level 1: interpolated from the CSV of `sealfe table` (Table file). "
+                    "finite element = level 2: the FE Reynolds solve linearised about the "
+                    "Geometry as given (subsections Discretization, Cavitation, Roughness, "
+                    "Coefficients), at Film speed nodes speeds of a sweep.");
+  prm.declare_entry("Table file", "", dealii::Patterns::Anything(),
+                    "Film model = table only: the coefficient table (CSV of `sealfe table`), "
+                    "relative to the working directory. It must hold this seal (every quantity "
+                    "it did not sweep equal to the Geometry and Operating conditions here) and "
+                    "cover the swept speeds: the film depends on the ring speeds through their "
+                    "mean only, so a table over the rotor speed (stator at 0) serves an FMRR "
+                    "sweep if its rotor speeds cover rotor speed + stator speed.");
+  prm.declare_entry("Table interpolation", "cubic", dealii::Patterns::Selection("cubic|linear"),
+                    "Film model = table only: cubic Lagrange on 4 nodes per axis (O(h^4)) or "
+                    "multilinear (O(h^2)).");
+  prm.declare_entry("Film speed nodes", "9", dealii::Patterns::Integer(0),
+                    "Film model = finite element only: for a speed sweep the FE coefficients are "
+                    "computed at this many equally spaced speeds of the swept ring over the "
+                    "sweep and interpolated in between (cubic Lagrange; exact in full film, "
+                    "where K is affine in the mean speed and D does not depend on it). 0: an FE "
+                    "computation at every speed the sweep evaluates (hundreds or thousands). 1 "
+                    "is not allowed.");
   declare_ring(prm, "Rotor ring", rotor_default,
                "ring spinning at Operating conditions/Rotor speed");
   declare_ring(prm, "Stator ring", stator_default,
@@ -890,6 +911,9 @@ void SealDynamicsInput::parse_parameters(dealii::ParameterHandler &prm)
   prm.enter_subsection("Seal dynamics");
   configuration = configuration_from_string(prm.get("Configuration"));
   film_model = prm.get("Film model");
+  table_file = prm.get("Table file");
+  table_interpolation = prm.get("Table interpolation");
+  film_speed_nodes = prm.get_integer("Film speed nodes");
   rotor = parse_ring(prm, "Rotor ring");
   stator = parse_ring(prm, "Stator ring");
   prm.leave_subsection();
@@ -910,10 +934,6 @@ int SealDynamicsInput::film_model_level() const
 void SealDynamicsInput::validate() const
 {
   const int level = film_model_level();
-  if (level != 0)
-    throw std::runtime_error("Seal dynamics: Film model = " + film_model +
-                             " is not available yet to the dynamics (level " +
-                             std::to_string(level) + "); use Film model = closed form");
   geometry.validate();
   operating.validate();
   if (configuration == SealConfiguration::fms_flexible_rotor && operating.stator_speed != 0.0)
@@ -930,20 +950,325 @@ void SealDynamicsInput::validate() const
       << "Stator speed must be 0 (got " << operating.stator_speed << " rad/s)";
     throw std::runtime_error(s.str());
   }
-  GreenEtsionCoefficients check(geometry, operating); // throws on an impossible narrow seal
-  build().validate();
+  if (level == 0)
+    GreenEtsionCoefficients check(geometry, operating); // throws on an impossible narrow seal
+  else if (level == 1)
+    film(); // reads the table and checks that it holds this seal
+  else
+  {
+    if (!finite_element)
+      throw std::runtime_error("Seal dynamics: Film model = finite element needs the "
+                               "finite-element solver, which the sealfe application supplies "
+                               "(SealDynamicsInput::finite_element is empty)");
+    if (film_speed_nodes == 1)
+      throw std::runtime_error("Seal dynamics: Film speed nodes must be 0 (an FE computation at "
+                               "every speed) or at least 2 (got 1)");
+  }
+  AngularSealDynamics(configuration, rotor, stator, FilmModel()).validate();
+}
+
+std::shared_ptr<const CoefficientTable> SealDynamicsInput::table() const
+{
+  const std::string key = table_file + "\n" + table_interpolation;
+  if (table_cache && table_cache_key == key)
+    return table_cache;
+  if (table_file.empty())
+    throw std::runtime_error("Seal dynamics: Film model = table needs a Table file (the CSV "
+                             "written by sealfe table)");
+  try
+  {
+    table_cache = std::make_shared<const CoefficientTable>(
+        table_file, table_interpolation == "linear" ? CoefficientTable::Interpolation::linear
+                                                    : CoefficientTable::Interpolation::cubic);
+  }
+  catch (const std::exception &e)
+  {
+    throw std::runtime_error(std::string("Seal dynamics: Table file: ") + e.what());
+  }
+  table_cache_key = key;
+  return table_cache;
 }
 
 FilmModel SealDynamicsInput::film() const
 {
+  const int level = film_model_level();
+  if (level == 1)
+  {
+    try
+    {
+      return table()->film_model(geometry, operating);
+    }
+    catch (const std::exception &e)
+    {
+      const std::string what = e.what();
+      throw std::runtime_error(what.rfind("Seal dynamics:", 0) == 0
+                                   ? what
+                                   : "Seal dynamics: Film model = table: " + what);
+    }
+  }
+  if (level == 2)
+  {
+    if (!finite_element)
+      throw std::runtime_error("Seal dynamics: Film model = finite element needs the "
+                               "finite-element solver, which the sealfe application supplies "
+                               "(SealDynamicsInput::finite_element is empty)");
+    auto cache = std::make_shared<std::map<std::pair<double, double>, FilmCoefficients>>();
+    return [provider = finite_element, film = geometry, conditions = operating,
+            cache](const double rotor_speed, const double stator_speed)
+    {
+      const auto key = std::make_pair(rotor_speed, stator_speed);
+      const auto hit = cache->find(key);
+      if (hit != cache->end())
+        return hit->second;
+      OperatingConditions c = conditions;
+      c.rotor_speed = rotor_speed;
+      c.stator_speed = stator_speed;
+      FilmCoefficients k = provider(film, c);
+      k.level = 2;
+      k.rotor_speed = rotor_speed;
+      k.stator_speed = stator_speed;
+      cache->emplace(key, k);
+      return k;
+    };
+  }
   const GreenEtsionCoefficients g(geometry, operating);
   return [g](const double rotor_speed, const double stator_speed)
   { return g.coefficients(rotor_speed, stator_speed); };
 }
 
+SweepFilm SealDynamicsInput::sweep_film(const AngularSealDynamics::SweptRing swept,
+                                        const double fixed_speed, const double from,
+                                        const double to) const
+{
+  const bool swept_rotor = swept == AngularSealDynamics::SweptRing::rotor;
+  SweepFilm s;
+  s.model = film();
+  const int level = film_model_level();
+  if (level == 0)
+    s.description = {{"method",
+                      "closed form (level 0) at every speed: k11 and d11 do not depend "
+                      "on speed, the cross-coupled stiffness is (omega1 + omega2)/2 d11"}};
+  else if (level == 1)
+  {
+    // Fail before the sweep, with the sweep named, if it leaves the table.
+    for (const double w : {from, to})
+      try
+      {
+        s.model(swept_rotor ? w : fixed_speed, swept_rotor ? fixed_speed : w);
+      }
+      catch (const std::exception &e)
+      {
+        std::ostringstream m;
+        m << "Seal dynamics: Film model = table: the sweep of the "
+          << (swept_rotor ? "rotor" : "stator") << " speed over [" << from << ", " << to
+          << "] rad/s (other ring at " << fixed_speed << " rad/s) leaves the table: " << e.what();
+        throw std::runtime_error(m.str());
+      }
+    s.description = {{"method", "table lookup (level 1) at every speed, interpolated by the "
+                                "table in the mean speed and its other axes"},
+                     {"table", table_file},
+                     {"interpolation", table_interpolation},
+                     {"table_axes", table()->axes()}};
+  }
+  else if (film_speed_nodes == 0)
+    s.description = {{"method", "finite element (level 2) at every speed the sweep evaluates"}};
+  else
+  {
+    auto interpolation = std::make_shared<SpeedInterpolatedFilm>(s.model, swept, fixed_speed, from,
+                                                                 to, film_speed_nodes);
+    s.interpolation = interpolation;
+    s.model = [interpolation](const double rotor_speed, const double stator_speed)
+    { return (*interpolation)(rotor_speed, stator_speed); };
+    s.description = interpolation->to_json();
+  }
+  return s;
+}
+
 AngularSealDynamics SealDynamicsInput::build() const
 {
-  return AngularSealDynamics(configuration, rotor, stator, film());
+  return build(film());
+}
+
+AngularSealDynamics SealDynamicsInput::build(FilmModel film_model) const
+{
+  return AngularSealDynamics(configuration, rotor, stator, std::move(film_model));
+}
+
+// ------------------------------------------------------------------------------------------------
+// SpeedInterpolatedFilm
+
+SpeedInterpolatedFilm::SpeedInterpolatedFilm(FilmModel exact,
+                                             const AngularSealDynamics::SweptRing swept,
+                                             const double fixed_speed, const double from,
+                                             const double to, const unsigned int n_nodes)
+    : state(std::make_shared<State>())
+{
+  if (!(to > from) || !std::isfinite(from) || !std::isfinite(to) || n_nodes < 2)
+    throw std::runtime_error("Seal dynamics: the speed interpolation of the film needs 'to' > "
+                             "'from' and at least 2 nodes");
+  state->exact = std::move(exact);
+  state->swept = swept;
+  state->fixed = fixed_speed;
+  state->from = from;
+  state->to = to;
+  state->n = n_nodes;
+  state->nodes.resize(n_nodes);
+}
+
+std::vector<double> SpeedInterpolatedFilm::node_speeds() const
+{
+  std::vector<double> w(state->n);
+  for (unsigned int i = 0; i < state->n; ++i)
+    w[i] = (i + 1 == state->n) ? state->to
+                               : state->from + (state->to - state->from) * i / (state->n - 1);
+  return w;
+}
+
+bool SpeedInterpolatedFilm::on_line(const double rotor_speed, const double stator_speed,
+                                    double &swept_speed) const
+{
+  const bool swept_rotor = state->swept == AngularSealDynamics::SweptRing::rotor;
+  const double other = swept_rotor ? stator_speed : rotor_speed;
+  swept_speed = swept_rotor ? rotor_speed : stator_speed;
+  const double slack = 1e-12 * (state->to - state->from);
+  return other == state->fixed && swept_speed >= state->from - slack &&
+         swept_speed <= state->to + slack;
+}
+
+FilmCoefficients SpeedInterpolatedFilm::node(const unsigned int i) const
+{
+  if (!state->nodes[i])
+  {
+    const double w = node_speeds()[i];
+    const bool swept_rotor = state->swept == AngularSealDynamics::SweptRing::rotor;
+    state->nodes[i] = std::make_unique<FilmCoefficients>(
+        state->exact(swept_rotor ? w : state->fixed, swept_rotor ? state->fixed : w));
+    ++state->evaluations;
+  }
+  return *state->nodes[i];
+}
+
+FilmCoefficients SpeedInterpolatedFilm::interpolate(const double swept_speed) const
+{
+  const std::vector<double> v = node_speeds();
+  const unsigned int n = v.size();
+  const double x = std::clamp(swept_speed, v.front(), v.back());
+  // Interval k with v[k] <= x <= v[k+1]; the stencil of (up to) 4 nodes around it shifts
+  // inwards at the ends (as CoefficientTable::axis_weights).
+  unsigned int k = std::upper_bound(v.begin(), v.end(), x) - v.begin();
+  k = std::min(std::max(k, 1u), n - 1) - 1;
+  const unsigned int width = std::min(4u, n);
+  const int first = std::clamp(static_cast<int>(k) - 1, 0, static_cast<int>(n - width));
+  FilmCoefficients result;
+  bool have = false;
+  for (unsigned int m = 0; m < width; ++m)
+  {
+    double weight = 1;
+    for (unsigned int l = 0; l < width; ++l)
+      if (l != m)
+        weight *= (x - v[first + l]) / (v[first + m] - v[first + l]);
+    const FilmCoefficients c = node(first + m);
+    if (!have)
+    {
+      result = c; // level, model
+      for (auto *mat : {&result.stiffness, &result.damping})
+        for (auto &row : *mat)
+          row.fill(0.0);
+      have = true;
+    }
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        result.stiffness[i][j] += weight * c.stiffness[i][j];
+        result.damping[i][j] += weight * c.damping[i][j];
+      }
+  }
+  return result;
+}
+
+FilmCoefficients SpeedInterpolatedFilm::operator()(const double rotor_speed,
+                                                   const double stator_speed) const
+{
+  double w;
+  if (!on_line(rotor_speed, stator_speed, w))
+  {
+    const auto key = std::make_pair(rotor_speed, stator_speed);
+    const auto hit = state->off_line.find(key);
+    if (hit != state->off_line.end())
+      return hit->second;
+    const FilmCoefficients c = state->exact(rotor_speed, stator_speed);
+    ++state->evaluations;
+    state->off_line.emplace(key, c);
+    return c;
+  }
+  FilmCoefficients c = interpolate(w);
+  c.rotor_speed = rotor_speed;
+  c.stator_speed = stator_speed;
+  return c;
+}
+
+SpeedInterpolatedFilm::Check SpeedInterpolatedFilm::check(const double swept_speed,
+                                                          const double outer_radius) const
+{
+  const std::vector<double> v = node_speeds();
+  const double x = std::clamp(swept_speed, v.front(), v.back());
+  unsigned int k = std::upper_bound(v.begin(), v.end(), x) - v.begin();
+  k = std::min(std::max(k, 1u), static_cast<unsigned int>(v.size()) - 1) - 1;
+  Check c;
+  c.speed = 0.5 * (v[k] + v[k + 1]);
+  const bool swept_rotor = state->swept == AngularSealDynamics::SweptRing::rotor;
+  const double wr = swept_rotor ? c.speed : state->fixed, ws = swept_rotor ? state->fixed : c.speed;
+  const FilmCoefficients reference = state->exact(wr, ws);
+  ++state->evaluations;
+  const CoefficientTable::Error e =
+      CoefficientTable::compare((*this)(wr, ws), reference, outer_radius);
+  c.stiffness = e.stiffness;
+  c.damping = e.damping;
+  return c;
+}
+
+nlohmann::json SpeedInterpolatedFilm::check_report(const std::vector<double> &swept_speeds,
+                                                   const double outer_radius) const
+{
+  nlohmann::json checks = nlohmann::json::array();
+  std::vector<double> done;
+  double worst_k = 0, worst_d = 0;
+  for (const double w : swept_speeds)
+  {
+    const Check c = check(w, outer_radius);
+    if (std::find(done.begin(), done.end(), c.speed) != done.end())
+      continue;
+    done.push_back(c.speed);
+    checks.push_back(
+        {{"swept_speed", c.speed}, {"stiffness_error", c.stiffness}, {"damping_error", c.damping}});
+    worst_k = std::max(worst_k, c.stiffness);
+    worst_d = std::max(worst_d, c.damping);
+  }
+  return {{"checks", checks},
+          {"max_stiffness_error", worst_k},
+          {"max_damping_error", worst_d},
+          {"definition", "interpolated against computed coefficients midway between the two nodes "
+                         "around each speed of interest: max_ij |K~ - K| / max_ij |K| of diag(1, "
+                         "1/ro, 1/ro) K diag(1, 1/ro, 1/ro); the same for D"}};
+}
+
+nlohmann::json SpeedInterpolatedFilm::to_json() const
+{
+  const bool swept_rotor = state->swept == AngularSealDynamics::SweptRing::rotor;
+  std::ostringstream m;
+  m << "finite element (level 2) at " << state->n << " equally spaced "
+    << (swept_rotor ? "rotor" : "stator") << " speeds over [" << state->from << ", " << state->to
+    << "] rad/s (other ring at " << state->fixed << " rad/s), "
+    << (state->n == 2   ? "linear"
+        : state->n == 3 ? "quadratic"
+                        : "cubic")
+    << " Lagrange interpolation in between (exact in full film: K affine in the mean speed, D "
+       "independent of it); an FE computation at any other speed pair";
+  return {{"method", m.str()},
+          {"swept_speed", swept_rotor ? "rotor" : "stator"},
+          {"fixed_speed", state->fixed},
+          {"node_speeds", node_speeds()},
+          {"nodes", state->n}};
 }
 
 double SealDynamicsInput::contact_tilt() const

@@ -75,10 +75,12 @@ nlohmann::json pick_range(const std::vector<AngularSealDynamics::SpeedInterval> 
 }
 } // namespace
 
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory)
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
+                   const FilmCoefficientProvider &finite_element)
 {
   SealDynamicsInput input;
   input.parse_parameters(prm);
+  input.finite_element = finite_element;
   input.validate();
 
   prm.enter_subsection("Stability");
@@ -102,12 +104,6 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       << sweep.from << " rad/s)";
     throw std::runtime_error(s.str());
   }
-  const bool isotropic_film =
-      input.film()(input.operating.rotor_speed, input.operating.stator_speed)
-          .tilt_block_is_isotropic(1e-9);
-  if (sweep.criterion == AngularSealDynamics::Criterion::routh_hurwitz && !isotropic_film)
-    throw std::runtime_error("Stability: Criterion = Routh-Hurwitz needs an isotropic film "
-                             "tilt block; use Criterion = eigenvalues");
   std::vector<double> values;
   if (second != "none")
   {
@@ -121,17 +117,24 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
                                " needs a list of Second parameter values");
   }
 
-  const AngularSealDynamics dynamics = input.build();
   const double wr = input.operating.rotor_speed, ws = input.operating.stator_speed;
   const bool swept_rotor = sweep.swept == AngularSealDynamics::SweptRing::rotor;
   const double fixed = swept_rotor ? ws : wr, current = swept_rotor ? wr : ws;
+  // Level 2: the FE coefficients at a few speeds of the sweep, interpolated in between.
+  const SweepFilm film = input.sweep_film(sweep.swept, fixed, sweep.from, sweep.to);
+  const AngularSealDynamics dynamics = input.build(film.model);
 
   nlohmann::json summary;
   summary["configuration"] = to_string(input.configuration);
   const FilmCoefficients fc = dynamics.film_coefficients(wr, ws);
+  const bool isotropic_film = fc.tilt_block_is_isotropic(1e-9);
+  if (sweep.criterion == AngularSealDynamics::Criterion::routh_hurwitz && !isotropic_film)
+    throw std::runtime_error("Stability: Criterion = Routh-Hurwitz needs an isotropic film "
+                             "tilt block; use Criterion = eigenvalues");
   summary["film_model"] = fc.model;
   summary["film_model_level"] = input.film_model_level();
   summary["film_coefficients"] = fc.to_json();
+  summary["film_speed_dependence"] = film.description;
   summary["rotor_speed"] = wr;
   summary["stator_speed"] = ws;
   const auto lambda = dynamics.eigenvalues(wr, ws);
@@ -166,6 +169,20 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   for (const auto &i : intervals)
     all.push_back({i.low, i.high});
   summary["stable_intervals"] = all;
+  if (film.interpolation)
+  {
+    // The interpolation error where it matters: one FE computation midway between the nodes
+    // around each end of the stable range (or around the operating speed without one).
+    std::vector<double> at;
+    if (found)
+      for (unsigned int k = 0; k < 2; ++k)
+        if (!limits[k].get<bool>())
+          at.push_back(summary["stable_range"][k].get<double>());
+    if (at.empty())
+      at.push_back(current);
+    summary["film_speed_dependence"]["interpolation_check"] =
+        film.interpolation->check_report(at, input.geometry.outer_radius);
+  }
   try
   {
     summary["undamped_thresholds"] = dynamics.undamped_threshold_speeds(sweep.swept, fixed);
@@ -224,9 +241,10 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
         throw std::runtime_error("Stability: Second parameter " + second + " = " +
                                  std::to_string(v) + ": " + e.what());
       }
-      const AngularSealDynamics d = varied.build();
       const double f = swept_rotor ? varied.operating.stator_speed : varied.operating.rotor_speed;
       const double c = swept_rotor ? varied.operating.rotor_speed : varied.operating.stator_speed;
+      const AngularSealDynamics d =
+          varied.build(varied.sweep_film(sweep.swept, f, sweep.from, sweep.to).model);
       const auto iv =
           d.stable_speed_intervals(sweep.swept, f, sweep.from, sweep.to, sweep.n, sweep.criterion);
       bool ok = false;

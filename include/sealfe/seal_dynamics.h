@@ -12,11 +12,16 @@
 #include <array>
 #include <complex>
 #include <functional>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sealfe
 {
+class CoefficientTable;
+
 /// Which rings are flexibly mounted (the others are rigid, their tilt prescribed).
 ///   FMS:  flexible stator ring, rigid rotor ring (Green & Etsion)
 ///   FMR:  rigid stator ring, flexible rotor ring (Green)
@@ -59,6 +64,12 @@ struct RingProperties
 /// The film coefficients at given ring speeds: any level (closed form, table, finite element)
 /// can be plugged in. Only the tilt block of K and D is used (axial-angular decoupling).
 using FilmModel = std::function<FilmCoefficients(double rotor_speed, double stator_speed)>;
+
+/// A producer of film coefficients for a whole seal and operating point (the speeds are those of
+/// `conditions`). The finite-element level (CoefficientSolver, in the FE library that this light
+/// module cannot link) reaches the dynamics through this hook: the application supplies it.
+using FilmCoefficientProvider = std::function<FilmCoefficients(
+    const FilmThickness &film, const OperatingConditions &conditions)>;
 
 /// M q_ddot + C q_dot + K q = f for the tilt degrees of freedom of the flexible rings, ordered
 /// (stator tilt_x, stator tilt_y, rotor tilt_x, rotor tilt_y) with rigid rings left out. C holds
@@ -211,6 +222,81 @@ private:
   FilmModel film;
 };
 
+/// Film coefficients along one line of ring speeds — one ring's speed swept over [from, to], the
+/// other ring held at fixed_speed — interpolated between n_nodes >= 2 equally spaced evaluations
+/// of an expensive model (level 2): Lagrange interpolation on the 4 nodes around the speed
+/// (cubic; linear with 2 nodes, quadratic with 3), as the coefficient table does per axis.
+///
+/// In full film the interpolation is exact: the Reynolds equation is linear in p, the ring speeds
+/// enter only through the Couette source (omega1 + omega2)/2 dh/dtheta, so K is affine in the
+/// mean speed (the hydrostatic part constant, the hydrodynamic part proportional) and D does not
+/// depend on it; any degree >= 1 reproduces that. With cavitation in the linearised state the
+/// dependence is not affine and the interpolation error is reported by check().
+///
+/// A node is evaluated when it is first needed and kept; copies share the nodes. Speeds off the
+/// line (the fixed ring at another speed) or outside [from, to] go to the exact model.
+class SpeedInterpolatedFilm
+{
+public:
+  SpeedInterpolatedFilm(FilmModel exact, AngularSealDynamics::SweptRing swept, double fixed_speed,
+                        double from, double to, unsigned int n_nodes);
+
+  FilmCoefficients operator()(double rotor_speed, double stator_speed) const;
+
+  AngularSealDynamics::SweptRing swept() const { return state->swept; }
+  double fixed_speed() const { return state->fixed; }
+  /// The swept speeds of the nodes (rad/s).
+  std::vector<double> node_speeds() const;
+  /// Exact evaluations made so far (nodes and off-line speeds).
+  unsigned int n_exact_evaluations() const { return state->evaluations; }
+
+  /// Interpolation error at the midpoint of the node interval that contains `swept_speed`
+  /// (clamped to [from, to]): one exact evaluation there, compared entry-wise as by
+  /// CoefficientTable::compare (max |K~ - K| / max |K| of the dimensionally uniform matrices with
+  /// outer radius ro; the same for D).
+  struct Check
+  {
+    double speed = 0;     // swept speed of the check (rad/s)
+    double stiffness = 0; // relative error of K
+    double damping = 0;   // relative error of D
+  };
+  Check check(double swept_speed, double outer_radius) const;
+  /// check() at each of the speeds (duplicate intervals checked once) as summary JSON:
+  /// {"checks": [{"swept_speed", "stiffness_error", "damping_error"}, ...],
+  ///  "max_stiffness_error", "max_damping_error", "definition"}.
+  nlohmann::json check_report(const std::vector<double> &swept_speeds, double outer_radius) const;
+
+  /// {"method": ..., "swept_speed": "rotor"|"stator", "fixed_speed", "node_speeds", ...}
+  nlohmann::json to_json() const;
+
+private:
+  bool on_line(double rotor_speed, double stator_speed, double &swept_speed) const;
+  FilmCoefficients node(unsigned int i) const;
+  FilmCoefficients interpolate(double swept_speed) const;
+
+  struct State
+  {
+    FilmModel exact;
+    AngularSealDynamics::SweptRing swept;
+    double fixed, from, to;
+    unsigned int n;
+    std::vector<std::unique_ptr<FilmCoefficients>> nodes;
+    std::map<std::pair<double, double>, FilmCoefficients> off_line;
+    unsigned int evaluations = 0;
+  };
+  std::shared_ptr<State> state;
+};
+
+/// The film a sweep of one ring's speed uses (SealDynamicsInput::sweep_film).
+struct SweepFilm
+{
+  FilmModel model;
+  /// Level 2 with Film speed nodes >= 2: the interpolation behind `model` (else null).
+  std::shared_ptr<const SpeedInterpolatedFilm> interpolation;
+  /// How the coefficients depend on the swept speed, for the summary ("film_speed_dependence").
+  nlohmann::json description;
+};
+
 /// Everything a dynamics run reads from a parameter file: subsection "Seal dynamics" (declared
 /// here) plus "Geometry" and "Operating conditions" (declared by the application). Kept as plain
 /// data so that a parameter study can change one entry and build() again.
@@ -221,6 +307,15 @@ struct SealDynamicsInput
   FilmThickness geometry;
   OperatingConditions operating;
   std::string film_model = "closed form"; // "closed form" | "table" | "finite element"
+  /// Level 1: the CSV written by `sealfe table` (path as given, relative to the working
+  /// directory) and its interpolation ("cubic" | "linear").
+  std::string table_file;
+  std::string table_interpolation = "cubic";
+  /// Level 2: number of swept speeds at which the FE coefficients are computed for a sweep
+  /// (SpeedInterpolatedFilm); 0 = an FE computation at every speed the sweep asks for.
+  unsigned int film_speed_nodes = 9;
+  /// Level 2: the FE producer, supplied by the application (not read from the prm).
+  FilmCoefficientProvider finite_element;
 
   /// Declares subsection "Seal dynamics" with its subsections "Rotor ring" and "Stator ring".
   /// Defaults: the FMS seal on a flexible rotor of Varney & Green (seed 002 Tables 1-2).
@@ -228,13 +323,24 @@ struct SealDynamicsInput
   /// Reads "Seal dynamics", "Geometry" and "Operating conditions".
   void parse_parameters(dealii::ParameterHandler &prm);
   /// One-line std::runtime_error naming the parameter for impossible input, for configurations
-  /// whose speeds do not fit (FMS with flexible rotor: the stator does not spin), and for film
-  /// levels that do not exist yet ("table", "finite element": not available yet).
+  /// whose speeds do not fit (FMS with flexible rotor: the stator does not spin), for a table
+  /// that cannot be read or is not this seal's, and for level 2 without a producer. Makes no FE
+  /// solve.
   void validate() const;
   int film_model_level() const;
-  /// The film model of the chosen level (level 0: GreenEtsionCoefficients) and the dynamics.
+  /// The film model of the chosen level at any pair of ring speeds: level 0
+  /// GreenEtsionCoefficients, level 1 CoefficientTable lookups (the table read once and shared
+  /// by copies of this input), level 2 the finite_element producer, one computation per speed
+  /// pair (kept for repeated pairs).
   FilmModel film() const;
+  /// The film for a sweep of one ring's speed over [from, to] (the other at fixed_speed): film()
+  /// for levels 0 and 1 (level 1: both ends of the sweep are checked to lie in the table, with a
+  /// one-line error otherwise); level 2 with film_speed_nodes >= 2 a SpeedInterpolatedFilm over
+  /// film(), else film() itself.
+  SweepFilm sweep_film(AngularSealDynamics::SweptRing swept, double fixed_speed, double from,
+                       double to) const;
   AngularSealDynamics build() const;
+  AngularSealDynamics build(FilmModel film_model) const;
   /// Relative tilt at which the faces touch: min(C0/ri, (C0 + beta (ro - ri))/ro), i.e. C0/ri
   /// for a seal coned open outward (seed 002: gamma*_cr = C0/ri).
   double contact_tilt() const;
@@ -242,6 +348,12 @@ struct SealDynamicsInput
   /// parameter_names(). "Clearance" keeps beta* ro/C0 if hold_normalized_coning.
   void set(const std::string &name, double value, bool hold_normalized_coning);
   static std::string parameter_names();
+
+private:
+  /// The level-1 table, read once (by film() or validate()) and shared by copies.
+  std::shared_ptr<const CoefficientTable> table() const;
+  mutable std::shared_ptr<const CoefficientTable> table_cache;
+  mutable std::string table_cache_key;
 };
 
 } // namespace sealfe

@@ -489,8 +489,12 @@ TEST(StabilitySubcommand, RefusesBadInputWithOneLine)
     return std::string();
   };
   const std::vector<std::pair<std::vector<Setting>, std::string>> cases = {
-      {{{"Seal dynamics", "Film model", "finite element"}}, "not available yet"},
-      {{{"Seal dynamics", "Film model", "table"}}, "not available yet"},
+      // level 2 without the FE producer (the application supplies it; this test does not)
+      {{{"Seal dynamics", "Film model", "finite element"}}, "needs the finite-element solver"},
+      {{{"Seal dynamics", "Film model", "table"}}, "needs a Table file"},
+      {{{"Seal dynamics", "Film model", "table"},
+        {"Seal dynamics", "Table file", "/nonexistent.csv"}},
+       "Table file"},
       {{{"Stability", "Sweep to", "-50000"}}, "Sweep to"},
       {{{"Seal dynamics", "Configuration", "FMS with flexible rotor"},
         {"Operating conditions", "Stator speed", "500"}},
