@@ -260,6 +260,7 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
     f.dc_div_factor = w_mean;
     f.squeeze = h_t;
     f.dsqueeze_dht = 1;
+    f.h_T = f.h;
   }
   else
   {
@@ -281,6 +282,10 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
     f.dc_dh = f.dc_div_factor * rotation;
     f.squeeze = ff.h_T.d_dh * h_t;
     f.dsqueeze_dht = ff.h_T.d_dh;
+    f.phi_r = ff.phi_r.value;
+    f.phi_theta = ff.phi_theta.value;
+    f.phi_s = ff.phi_s.value;
+    f.h_T = ff.h_T.value;
   }
   // div(omega_eff(h) r e_theta) = omega_eff'(h) dh/dtheta (r e_theta is divergence free)
   f.c_div = f.dc_div_factor * dh_dtheta;
@@ -1431,18 +1436,31 @@ public:
       out[q](0) = f.h;
       out[q](1) = flux[0];
       out[q](2) = flux[1];
+      out[q](3) = f.h_T;
+      out[q](4) = f.phi_r;
+      out[q](5) = f.phi_theta;
+      out[q](6) = f.phi_s;
+      out[q](7) = f.contact_pressure;
     }
   }
   std::vector<std::string> get_names() const override
   {
-    return {"film_thickness", "volume_flux", "volume_flux"};
+    return {"film_thickness",
+            "volume_flux",
+            "volume_flux",
+            "expected_gap",
+            "pressure_flow_factor_r",
+            "pressure_flow_factor_theta",
+            "shear_flow_factor",
+            "contact_pressure"};
   }
   std::vector<DataComponentInterpretation::DataComponentInterpretation>
   get_data_component_interpretation() const override
   {
-    return {DataComponentInterpretation::component_is_scalar,
-            DataComponentInterpretation::component_is_part_of_vector,
-            DataComponentInterpretation::component_is_part_of_vector};
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
+        8, DataComponentInterpretation::component_is_scalar);
+    kinds[1] = kinds[2] = DataComponentInterpretation::component_is_part_of_vector;
+    return kinds;
   }
   UpdateFlags get_needed_update_flags() const override
   {

@@ -92,6 +92,7 @@ public:
     double c_div, dc_div_factor;   // div c, and d(omega_eff)/dh (div of a perturbed c)
     double squeeze, dsqueeze_dht;  // d h_T/dt = h_T'(h) dh/dt, and h_T'(h)
     double contact_pressure, dcontact_dh;
+    double phi_r = 1, phi_theta = 1, phi_s = 0, h_T; // flow factors and expected gap (output)
   };
   LocalFilm local_film(const dealii::Point<2> &x) const;
 
