@@ -989,17 +989,25 @@ void ReynoldsSolver::solve_cavitation()
 /// Loads of the solved state, or (with `perturbation`) their derivative for a perturbation whose
 /// nodal pressure and void-fraction changes are dp, dv. One routine, so that the linearisation
 /// differentiates exactly what the loads integrate.
-FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
-                                          const TrilinosWrappers::MPI::Vector *dp_nodal,
-                                          const TrilinosWrappers::MPI::Vector *dv_nodal) const
+std::vector<FilmLoads> ReynoldsSolver::integrate_loads(
+    const std::vector<const FilmPerturbation *> &perturbations,
+    const std::vector<const TrilinosWrappers::MPI::Vector *> &dp_nodal,
+    const std::vector<const TrilinosWrappers::MPI::Vector *> &dv_nodal) const
 {
+  // One cell loop for the solved state (perturbations = {nullptr}) or for all perturbation
+  // directions at once (the film data at each quadrature point are computed once).
+  const unsigned int n_k = perturbations.size();
+  const bool base = n_k == 1 && perturbations[0] == nullptr;
   const QGauss<2> quadrature(polynomial_degree + 2); // the assembly's rule (see there)
   FEValues<2> fe_values(*mapping, *fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
   const unsigned int n_q = quadrature.size(), dofs_per_cell = fe->n_dofs_per_cell();
-  std::vector<double> p(n_q), v(n_q), dp(n_q, 0.0), dv(n_q, 0.0), indicator(n_q, 0.0);
-  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q), grad_dp(n_q), grad_dv(n_q);
+  std::vector<double> p(n_q), v(n_q), indicator(n_q, 0.0);
+  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q);
+  std::vector<std::vector<double>> dp_k(n_k, std::vector<double>(n_q, 0.0)), dv_k = dp_k;
+  std::vector<std::vector<Tensor<1, 2>>> grad_dp_k(n_k, std::vector<Tensor<1, 2>>(n_q)),
+      grad_dv_k = grad_dp_k;
   std::vector<types::global_dof_index> dofs(dofs_per_cell);
 
   IndexSet inner_dofs, outer_dofs;
@@ -1018,7 +1026,7 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
   const double p_tol = 1e-9 * std::max(pressure_scale, 1.0);
 
   TrilinosWrappers::MPI::Vector cavitation_indicator;
-  if (!perturbation && cavitation.is_nonlinear())
+  if (base && cavitation.is_nonlinear())
   {
     TrilinosWrappers::MPI::Vector owned(locally_owned_dofs, mpi_communicator);
     for (const auto i : locally_owned_dofs)
@@ -1033,9 +1041,9 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
 
   // sums: F, Mx, My, Mr, Mt, residual inner, residual outer, friction, area, cavitated area,
   // squeeze flow, contact force, contact Mx, contact My, real contact area
-  std::vector<double> sum(15, 0.0);
+  std::vector<std::vector<double>> sums(n_k, std::vector<double>(15, 0.0));
   double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
-  Vector<double> local_residual(dofs_per_cell);
+  std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
 
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -1050,21 +1058,24 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
       }
       else
         std::fill(v.begin(), v.end(), 0.0), std::fill(grad_v.begin(), grad_v.end(), Tensor<1, 2>());
-      if (dp_nodal)
+      for (unsigned int k = 0; k < n_k; ++k)
       {
-        fe_values.get_function_values(*dp_nodal, dp);
-        fe_values.get_function_gradients(*dp_nodal, grad_dp);
-      }
-      if (dv_nodal)
-      {
-        fe_values.get_function_values(*dv_nodal, dv);
-        fe_values.get_function_gradients(*dv_nodal, grad_dv);
+        if (k < dp_nodal.size() && dp_nodal[k])
+        {
+          fe_values.get_function_values(*dp_nodal[k], dp_k[k]);
+          fe_values.get_function_gradients(*dp_nodal[k], grad_dp_k[k]);
+        }
+        if (k < dv_nodal.size() && dv_nodal[k])
+        {
+          fe_values.get_function_values(*dv_nodal[k], dv_k[k]);
+          fe_values.get_function_gradients(*dv_nodal[k], grad_dv_k[k]);
+        }
+        local_residual_k[k] = 0;
       }
       const double tau = jfo ? streamline_tau(cell) : 0.0;
-      if (!perturbation && cavitation.is_nonlinear())
+      if (base && cavitation.is_nonlinear())
         fe_values.get_function_values(cavitation_indicator, indicator);
       cell->get_dof_indices(dofs);
-      local_residual = 0;
       for (unsigned int q = 0; q < n_q; ++q)
       {
         const Point<2> &x = fe_values.quadrature_point(q);
@@ -1072,149 +1083,165 @@ FilmLoads ReynoldsSolver::integrate_loads(const FilmPerturbation *perturbation,
         const double r = f.r, theta = f.theta, h = f.h, JxW = fe_values.JxW(q);
         const Tensor<1, 2> &uc = f.u;
         const double s = 1 - v[q]; // liquid fraction
-        double dh = 0, dh_t = 0;
-        if (perturbation)
+        for (unsigned int k = 0; k < n_k; ++k)
         {
-          dh = perturbation->dh ? perturbation->dh(r, theta) : 0.0;
-          dh_t = perturbation->dh_dt ? perturbation->dh_dt(r, theta) : 0.0;
-        }
+          const FilmPerturbation *perturbation = perturbations[k];
+          const std::vector<double> &dp = dp_k[k], &dv = dv_k[k];
+          const std::vector<Tensor<1, 2>> &grad_dp = grad_dp_k[k], &grad_dv = grad_dv_k[k];
+          std::vector<double> &sum = sums[k];
+          Vector<double> &local_residual = local_residual_k[k];
+          double dh = 0, dh_t = 0;
+          if (perturbation)
+          {
+            dh = perturbation->dh ? perturbation->dh(r, theta) : 0.0;
+            dh_t = perturbation->dh_dt ? perturbation->dh_dt(r, theta) : 0.0;
+          }
 
-        // Pressure in the loads: half-Sommerfeld clips it (and freezes the clipped region in
-        // the linearisation); the other models use the solved field. The asperity contact
-        // pressure (zero without a contact model) adds to it.
-        const bool clipped = clip && p[q] < p_cav;
-        const double contact_p = perturbation ? f.dcontact_dh * dh : f.contact_pressure;
-        const double load_p =
-            (perturbation ? (clipped ? 0.0 : dp[q]) : (clipped ? p_cav : p[q]) - p_ref) + contact_p;
-        sum[0] += load_p * JxW;
-        sum[1] += load_p * x[1] * JxW;
-        sum[2] += -load_p * x[0] * JxW;
-        sum[3] += -load_p * (x[0] * cpsi + x[1] * spsi) * JxW;
-        sum[4] += load_p * (x[1] * cpsi - x[0] * spsi) * JxW;
-        sum[8] += JxW;
-        sum[11] += contact_p * JxW;
-        sum[12] += contact_p * x[1] * JxW;
-        sum[13] += -contact_p * x[0] * JxW;
-        if (!perturbation && contact.enabled())
-          sum[14] += contact.real_contact_area_fraction(h) * JxW;
-        // Cavitated area: half-Sommerfeld where the clipped pressure applies; reynolds and jfo
-        // where the interpolated nodal cavitation indicator is at least 1/2 (nodal, so that the
-        // overshoot of higher-order interpolants at the cavity edge does not count).
-        if (clipped || (cavitation.is_nonlinear() && indicator[q] >= 0.5))
-          sum[9] += JxW;
+          // Pressure in the loads: half-Sommerfeld clips it (and freezes the clipped region in
+          // the linearisation); the other models use the solved field. The asperity contact
+          // pressure (zero without a contact model) adds to it.
+          const bool clipped = clip && p[q] < p_cav;
+          const double contact_p = perturbation ? f.dcontact_dh * dh : f.contact_pressure;
+          const double load_p =
+              (perturbation ? (clipped ? 0.0 : dp[q]) : (clipped ? p_cav : p[q]) - p_ref) +
+              contact_p;
+          sum[0] += load_p * JxW;
+          sum[1] += load_p * x[1] * JxW;
+          sum[2] += -load_p * x[0] * JxW;
+          sum[3] += -load_p * (x[0] * cpsi + x[1] * spsi) * JxW;
+          sum[4] += load_p * (x[1] * cpsi - x[0] * spsi) * JxW;
+          sum[8] += JxW;
+          sum[11] += contact_p * JxW;
+          sum[12] += contact_p * x[1] * JxW;
+          sum[13] += -contact_p * x[0] * JxW;
+          if (!perturbation && contact.enabled())
+            sum[14] += contact.real_contact_area_fraction(h) * JxW;
+          // Cavitated area: half-Sommerfeld where the clipped pressure applies; reynolds and jfo
+          // where the interpolated nodal cavitation indicator is at least 1/2 (nodal, so that the
+          // overshoot of higher-order interpolants at the cavity edge does not count).
+          if (clipped || (cavitation.is_nonlinear() && indicator[q] >= 0.5))
+            sum[9] += JxW;
 
-        // Shear on the rotor face, as a torque resisting the rotor, -r tau_1: Couette part
-        // (carried by the liquid fraction) and Poiseuille part; with roughness the Patir-Cheng
-        // shear-stress factors (FlowFactors::rotor_shear_stress).
-        const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
-        const double s_clamped = std::clamp(s, 0.0, 1.0);
-        const double u1 = conditions.rotor_speed * r, u2 = conditions.stator_speed * r;
-        auto couette = [&](double hh)
-        { return -flow_factors.rotor_shear_stress(std::max(hh, 1e-300), mu, u1, u2, 0.0) * r; };
-        auto poiseuille = [&](double hh, double dpdx)
-        { return -flow_factors.rotor_shear_stress(std::max(hh, 1e-300), mu, 0.0, 0.0, dpdx) * r; };
-        if (!perturbation)
-        {
-          sum[7] += (s_clamped * couette(h) + poiseuille(h, dp_dtheta / r)) * JxW;
-          sum[10] += s * f.squeeze * JxW;
-          p_min = std::min(p_min, p[q]);
-          p_max = std::max(p_max, p[q]);
-        }
-        else
-        {
-          const double ddp_dtheta = -x[1] * grad_dp[q][0] + x[0] * grad_dp[q][1];
-          const double eps = 1e-7 * h;
-          const double dcouette = (couette(h + eps) - couette(h - eps)) / (2 * eps);
-          const double dpois =
-              (poiseuille(h + eps, dp_dtheta / r) - poiseuille(h - eps, dp_dtheta / r)) / (2 * eps);
-          sum[7] += (-dv[q] * couette(h) + s * dcouette * dh + dpois * dh +
-                     poiseuille(h, ddp_dtheta / r)) *
-                    JxW;
-          sum[10] += (-dv[q] * f.squeeze + s * f.dsqueeze_dht * dh_t) * JxW;
-        }
+          // Shear on the rotor face, as a torque resisting the rotor, -r tau_1: Couette part
+          // (carried by the liquid fraction) and Poiseuille part; with roughness the Patir-Cheng
+          // shear-stress factors (FlowFactors::rotor_shear_stress).
+          const double dp_dtheta = -x[1] * grad_p[q][0] + x[0] * grad_p[q][1];
+          const double s_clamped = std::clamp(s, 0.0, 1.0);
+          const double u1 = conditions.rotor_speed * r, u2 = conditions.stator_speed * r;
+          auto couette = [&](double hh)
+          { return -flow_factors.rotor_shear_stress(std::max(hh, 1e-300), mu, u1, u2, 0.0) * r; };
+          auto poiseuille = [&](double hh, double dpdx) {
+            return -flow_factors.rotor_shear_stress(std::max(hh, 1e-300), mu, 0.0, 0.0, dpdx) * r;
+          };
+          if (!perturbation)
+          {
+            sum[7] += (s_clamped * couette(h) + poiseuille(h, dp_dtheta / r)) * JxW;
+            sum[10] += s * f.squeeze * JxW;
+            p_min = std::min(p_min, p[q]);
+            p_max = std::max(p_max, p[q]);
+          }
+          else
+          {
+            const double ddp_dtheta = -x[1] * grad_dp[q][0] + x[0] * grad_dp[q][1];
+            const double eps = 1e-7 * h;
+            const double dcouette = (couette(h + eps) - couette(h - eps)) / (2 * eps);
+            const double dpois =
+                (poiseuille(h + eps, dp_dtheta / r) - poiseuille(h - eps, dp_dtheta / r)) /
+                (2 * eps);
+            sum[7] += (-dv[q] * couette(h) + s * dcouette * dh + dpois * dh +
+                       poiseuille(h, ddp_dtheta / r)) *
+                      JxW;
+            sum[10] += (-dv[q] * f.squeeze + s * f.dsqueeze_dht * dh_t) * JxW;
+          }
 
-        // Residual of the unconstrained weak form in m^3/s (its linearisation with a
-        // perturbation): R_i = int (K grad p - s c) . grad phi_i + s dh_T/dt phi_i
-        //                      - tau div(v c) (u . grad phi_i).
-        Tensor<1, 2> flux;
-        double volume, streamline;
-        if (!perturbation)
-        {
-          flux = f.K * grad_p[q] - s * f.c;
-          volume = s * f.squeeze;
-          streamline = -tau * (f.c * grad_v[q] + v[q] * f.c_div);
+          // Residual of the unconstrained weak form in m^3/s (its linearisation with a
+          // perturbation): R_i = int (K grad p - s c) . grad phi_i + s dh_T/dt phi_i
+          //                      - tau div(v c) (u . grad phi_i).
+          Tensor<1, 2> flux;
+          double volume, streamline;
+          if (!perturbation)
+          {
+            flux = f.K * grad_p[q] - s * f.c;
+            volume = s * f.squeeze;
+            streamline = -tau * (f.c * grad_v[q] + v[q] * f.c_div);
+          }
+          else
+          {
+            flux = f.K * grad_dp[q] + dh * (f.dK_dh * grad_p[q]) - (s * dh * f.dc_dh - dv[q] * f.c);
+            volume = s * f.dsqueeze_dht * dh_t - dv[q] * f.squeeze;
+            const double d = 1e-6;
+            const double ddh_dtheta =
+                perturbation->dh
+                    ? (perturbation->dh(r, theta + d) - perturbation->dh(r, theta - d)) / (2 * d)
+                    : 0.0;
+            // (second derivatives of the flow factors in h are neglected here)
+            streamline = -tau * (f.c * grad_dv[q] + dv[q] * f.c_div + dh * (f.dc_dh * grad_v[q]) +
+                                 v[q] * f.dc_div_factor * ddh_dtheta);
+          }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            local_residual(i) +=
+                (flux * fe_values.shape_grad(i, q) + volume * fe_values.shape_value(i, q) +
+                 streamline * (uc * fe_values.shape_grad(i, q))) *
+                JxW;
         }
-        else
-        {
-          flux = f.K * grad_dp[q] + dh * (f.dK_dh * grad_p[q]) - (s * dh * f.dc_dh - dv[q] * f.c);
-          volume = s * f.dsqueeze_dht * dh_t - dv[q] * f.squeeze;
-          const double d = 1e-6;
-          const double ddh_dtheta =
-              perturbation->dh
-                  ? (perturbation->dh(r, theta + d) - perturbation->dh(r, theta - d)) / (2 * d)
-                  : 0.0;
-          // (second derivatives of the flow factors in h are neglected here)
-          streamline = -tau * (f.c * grad_dv[q] + dv[q] * f.c_div + dh * (f.dc_dh * grad_v[q]) +
-                               v[q] * f.dc_div_factor * ddh_dtheta);
-        }
+      }
+      for (unsigned int k = 0; k < n_k; ++k)
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          local_residual(i) +=
-              (flux * fe_values.shape_grad(i, q) + volume * fe_values.shape_value(i, q) +
-               streamline * (uc * fe_values.shape_grad(i, q))) *
-              JxW;
-      }
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
-      {
-        if (inner_dofs.is_element(dofs[i]))
-          sum[5] += local_residual(i);
-        if (outer_dofs.is_element(dofs[i]))
-          sum[6] += local_residual(i);
-      }
+        {
+          if (inner_dofs.is_element(dofs[i]))
+            sums[k][5] += local_residual_k[k](i);
+          if (outer_dofs.is_element(dofs[i]))
+            sums[k][6] += local_residual_k[k](i);
+        }
     }
-  if (!perturbation)
+  if (base)
     for (const auto i : locally_owned_dofs)
     {
       // Nodal values too: for Lagrange elements they are point values of p_h.
       p_min = std::min(p_min, locally_relevant_solution[i]);
       p_max = std::max(p_max, locally_relevant_solution[i]);
     }
-  std::vector<double> total(sum.size());
-  MPI_Allreduce(sum.data(), total.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM,
-                mpi_communicator);
-
-  FilmLoads loads;
-  loads.force_z = total[0];
-  loads.moment_x = total[1];
-  loads.moment_y = total[2];
-  loads.moment_restoring = total[3];
-  loads.moment_transverse = total[4];
-  // The residual on a boundary is -(outward volume flux) through it.
-  loads.leakage_inner = -total[5];
-  loads.leakage_outer = -total[6];
-  loads.friction_torque = total[7];
-  loads.squeeze_flow = total[10];
-  loads.contact_force = total[11];
-  loads.contact_moment_x = total[12];
-  loads.contact_moment_y = total[13];
-  if (!perturbation)
+  std::vector<FilmLoads> result;
+  for (unsigned int k = 0; k < n_k; ++k)
   {
-    loads.area = total[8];
-    loads.contact_area_fraction = total[14] / total[8];
-    loads.min_film_over_sigma = flow_factors.is_smooth() && !contact.enabled()
-                                    ? std::numeric_limits<double>::infinity()
-                                    : film.minimum().value / flow_factors.composite_roughness();
-    loads.cavitated_fraction = total[9] / total[8];
-    loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
-    loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
-    loads.min_film = film.minimum().value;
+    std::vector<double> total(sums[k].size());
+    MPI_Allreduce(sums[k].data(), total.data(), static_cast<int>(total.size()), MPI_DOUBLE, MPI_SUM,
+                  mpi_communicator);
+    FilmLoads loads;
+    loads.force_z = total[0];
+    loads.moment_x = total[1];
+    loads.moment_y = total[2];
+    loads.moment_restoring = total[3];
+    loads.moment_transverse = total[4];
+    // The residual on a boundary is -(outward volume flux) through it.
+    loads.leakage_inner = -total[5];
+    loads.leakage_outer = -total[6];
+    loads.friction_torque = total[7];
+    loads.squeeze_flow = total[10];
+    loads.contact_force = total[11];
+    loads.contact_moment_x = total[12];
+    loads.contact_moment_y = total[13];
+    if (base)
+    {
+      loads.area = total[8];
+      loads.contact_area_fraction = total[14] / total[8];
+      loads.min_film_over_sigma = flow_factors.is_smooth() && !contact.enabled()
+                                      ? std::numeric_limits<double>::infinity()
+                                      : film.minimum().value / flow_factors.composite_roughness();
+      loads.cavitated_fraction = total[9] / total[8];
+      loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
+      loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
+      loads.min_film = film.minimum().value;
+    }
+    result.push_back(loads);
   }
-  return loads;
+  return result;
 }
 
 FilmLoads ReynoldsSolver::compute_loads() const
 {
   TimerOutput::Scope t(timer, "loads");
-  return integrate_loads(nullptr, nullptr, nullptr);
+  return integrate_loads({nullptr}, {}, {})[0];
 }
 
 FilmLoads ReynoldsSolver::linearized_loads(const FilmPerturbation &perturbation) const
@@ -1302,7 +1329,7 @@ ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbati
         homogeneous.distribute_local_to_global(cell_rhs[k], dofs, rhs[k]);
     }
 
-  std::vector<FilmLoads> result;
+  std::vector<TrilinosWrappers::MPI::Vector> dp_all(n_perturbations), dv_all(n_perturbations);
   for (unsigned int k = 0; k < n_perturbations; ++k)
   {
     rhs[k].compress(VectorOperation::add);
@@ -1338,13 +1365,20 @@ ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbati
     }
     dp_owned.compress(VectorOperation::insert);
     dv_owned.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector dp(locally_owned_dofs, locally_relevant_dofs, mpi_communicator),
-        dv(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-    dp = dp_owned;
-    dv = dv_owned;
-    result.push_back(integrate_loads(&perturbations[k], &dp, jfo ? &dv : nullptr));
+    dp_all[k].reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    dv_all[k].reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    dp_all[k] = dp_owned;
+    dv_all[k] = dv_owned;
   }
-  return result;
+  std::vector<const FilmPerturbation *> directions;
+  std::vector<const TrilinosWrappers::MPI::Vector *> dp_pointers, dv_pointers;
+  for (unsigned int k = 0; k < n_perturbations; ++k)
+  {
+    directions.push_back(&perturbations[k]);
+    dp_pointers.push_back(&dp_all[k]);
+    dv_pointers.push_back(jfo ? &dv_all[k] : nullptr);
+  }
+  return integrate_loads(directions, dp_pointers, dv_pointers);
 }
 
 FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,

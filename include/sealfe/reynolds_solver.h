@@ -165,9 +165,10 @@ private:
                                   const bool with_jacobian,
                                   dealii::TrilinosWrappers::MPI::Vector &rhs);
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
-  FilmLoads integrate_loads(const FilmPerturbation *perturbation,
-                            const dealii::TrilinosWrappers::MPI::Vector *dp,
-                            const dealii::TrilinosWrappers::MPI::Vector *dv) const;
+  std::vector<FilmLoads>
+  integrate_loads(const std::vector<const FilmPerturbation *> &perturbations,
+                  const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &dp,
+                  const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &dv) const;
   FilmLoads compute_loads() const;
 
   MPI_Comm mpi_communicator;
