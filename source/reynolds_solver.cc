@@ -120,6 +120,22 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   }
   constraints.close();
 
+  // The same with zero Dirichlet data: the constraints of every correction and perturbation
+  // (Newton steps of the cavitation models, linearised solves of the coefficients).
+  homogeneous_constraints.clear();
+  homogeneous_constraints.reinit(locally_relevant_dofs);
+  DoFTools::make_hanging_node_constraints(dof_handler, homogeneous_constraints);
+  for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
+    VectorTools::interpolate_boundary_values(*mapping, dof_handler, id,
+                                             Functions::ZeroFunction<2>(), homogeneous_constraints);
+  homogeneous_constraints.close();
+
+  // Dofs on each circle, for the consistent boundary fluxes (leakages).
+  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), inner_boundary_dofs,
+                                  {AnnulusMesh::inner_boundary});
+  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_boundary_dofs,
+                                  {AnnulusMesh::outer_boundary});
+
   DynamicSparsityPattern dsp(locally_relevant_dofs);
   DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
   SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
@@ -916,13 +932,6 @@ void ReynoldsSolver::solve_cavitation()
     excursion = std::max(excursion, std::abs(locally_relevant_solution[i] - p_cav));
   pressure_scale = std::max(Utilities::MPI::max(excursion, mpi_communicator), 1e-300);
 
-  homogeneous_constraints.clear();
-  homogeneous_constraints.reinit(locally_relevant_dofs);
-  DoFTools::make_hanging_node_constraints(dof_handler, homogeneous_constraints);
-  for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
-    VectorTools::interpolate_boundary_values(*mapping, dof_handler, id,
-                                             Functions::ZeroFunction<2>(), homogeneous_constraints);
-  homogeneous_constraints.close();
   reynolds_diagonal.reinit(locally_owned_dofs, mpi_communicator);
 
   // Reynolds: warm start from the full-film solution clipped at p_cav.
@@ -1010,11 +1019,7 @@ std::vector<FilmLoads> ReynoldsSolver::integrate_loads(
       grad_dv_k = grad_dp_k;
   std::vector<types::global_dof_index> dofs(dofs_per_cell);
 
-  IndexSet inner_dofs, outer_dofs;
-  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), inner_dofs,
-                                  {AnnulusMesh::inner_boundary});
-  DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_dofs,
-                                  {AnnulusMesh::outer_boundary});
+  const IndexSet &inner_dofs = inner_boundary_dofs, &outer_dofs = outer_boundary_dofs;
 
   const double mu = conditions.viscosity;
   const double p_ref = conditions.reference_pressure;
@@ -1225,13 +1230,13 @@ std::vector<FilmLoads> ReynoldsSolver::integrate_loads(
     {
       loads.area = total[8];
       loads.contact_area_fraction = total[14] / total[8];
+      loads.min_film = film.minimum().value;
       loads.min_film_over_sigma = flow_factors.is_smooth() && !contact.enabled()
                                       ? std::numeric_limits<double>::infinity()
-                                      : film.minimum().value / flow_factors.composite_roughness();
+                                      : loads.min_film / flow_factors.composite_roughness();
       loads.cavitated_fraction = total[9] / total[8];
       loads.min_pressure = Utilities::MPI::min(p_min, mpi_communicator);
       loads.max_pressure = Utilities::MPI::max(p_max, mpi_communicator);
-      loads.min_film = film.minimum().value;
     }
     result.push_back(loads);
   }
@@ -1271,12 +1276,7 @@ ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbati
   // Jacobian of the converged state (jfo: the FB-Newton Jacobian, whose eliminations move the
   // cavity boundary with the perturbation; reynolds: the active set, frozen). One cell loop for
   // all right-hand sides, one solve each with the factorisation of run().
-  AffineConstraints<double> homogeneous(locally_relevant_dofs);
-  DoFTools::make_hanging_node_constraints(dof_handler, homogeneous);
-  for (const auto id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
-    VectorTools::interpolate_boundary_values(*mapping, dof_handler, id,
-                                             Functions::ZeroFunction<2>(), homogeneous);
-  homogeneous.close();
+  const AffineConstraints<double> &homogeneous = homogeneous_constraints;
 
   std::vector<TrilinosWrappers::MPI::Vector> rhs(
       n_perturbations, TrilinosWrappers::MPI::Vector(locally_owned_dofs, mpi_communicator));

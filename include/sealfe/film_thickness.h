@@ -34,10 +34,6 @@ public:
            tilt * r * std::cos(theta - tilt_angle) +
            wave_amplitude * std::cos(wave_number * (theta - wave_phase));
   }
-  double value_xy(const double x, const double y) const
-  {
-    return value(std::hypot(x, y), std::atan2(y, x));
-  }
   /// dh/dr
   double d_dr(const double /*r*/, const double theta) const
   {

@@ -182,6 +182,7 @@ private:
   dealii::DoFHandler<2> dof_handler;
   dealii::IndexSet locally_owned_dofs, locally_relevant_dofs;
   dealii::AffineConstraints<double> constraints;
+  dealii::IndexSet inner_boundary_dofs, outer_boundary_dofs;
   dealii::TrilinosWrappers::SparseMatrix system_matrix;
   dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution, system_rhs;
 
@@ -192,8 +193,10 @@ private:
 
   double equation_scale = 1; // 12 mu / C0^3
 
-  // Cavitation (reynolds, jfo) state.
+  // Zero-Dirichlet constraints of corrections and perturbations (built in setup_system).
   dealii::AffineConstraints<double> homogeneous_constraints;
+
+  // Cavitation (reynolds, jfo) state.
   dealii::TrilinosWrappers::MPI::Vector locally_relevant_void; // v = 1 - liquid fraction
   dealii::TrilinosWrappers::MPI::Vector reynolds_diagonal;
   std::vector<dealii::types::global_dof_index> active_set; // reynolds: dofs held at p_cav
