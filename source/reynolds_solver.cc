@@ -154,30 +154,16 @@ void ReynoldsSolver::assemble_system()
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
   const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
-  FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+  FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell),
+      unused(dofs_per_cell, dofs_per_cell);
   Vector<double> cell_rhs(dofs_per_cell);
   std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
 
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      cell_matrix = 0;
-      cell_rhs = 0;
-      fe_values.reinit(cell);
-      for (const unsigned int q : fe_values.quadrature_point_indices())
-      {
-        const LocalFilm f = local_film(fe_values.quadrature_point(q));
-        const Tensor<2, 2> K = equation_scale * f.K;
-        const double JxW = fe_values.JxW(q);
-        for (const unsigned int i : fe_values.dof_indices())
-        {
-          const Tensor<1, 2> grad_i = fe_values.shape_grad(i, q);
-          for (const unsigned int j : fe_values.dof_indices())
-            cell_matrix(i, j) += (grad_i * (K * fe_values.shape_grad(j, q))) * JxW;
-          cell_rhs(i) +=
-              equation_scale * (f.c * grad_i - f.squeeze * fe_values.shape_value(i, q)) * JxW;
-        }
-      }
+      // the full-film pressure matrix and Couette + squeeze right-hand side
+      cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs);
       cell->get_dof_indices(local_dof_indices);
       constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
                                              system_matrix, system_rhs);
@@ -353,10 +339,10 @@ struct FilmPoint
 // Reynolds (Swift-Stieber): p_j = p_cav + P u_j with the complementarity min(u_j, R_j/J_jj) = 0,
 // solved by the primal-dual active-set method (Hintermueller, Ito & Kunisch 2002).
 
-void ReynoldsSolver::cell_cavitation_matrices(FEValues<2> &fe_values,
-                                              const DoFHandler<2>::active_cell_iterator &cell,
-                                              const bool with_void, FullMatrix<double> &A,
-                                              FullMatrix<double> &G, Vector<double> &F) const
+void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
+                                        const DoFHandler<2>::active_cell_iterator &cell,
+                                        const bool with_void, FullMatrix<double> &A,
+                                        FullMatrix<double> &G, Vector<double> &F) const
 {
   // A: pressure flow, F: full-film Couette + squeeze, G: void-fraction terms (see above). All
   // scaled by 12 mu / C0^3 like the full-film system.
@@ -416,7 +402,7 @@ double ReynoldsSolver::assemble_reynolds_system(const TrilinosWrappers::MPI::Vec
       cell->get_dof_values(u, local_u);
       for (unsigned int j = 0; j < n; ++j)
         local_p(j) = cavitation.pressure + pressure_scale * local_u(j);
-      cell_cavitation_matrices(fe_values, cell, false, A, G, F);
+      cell_film_matrices(fe_values, cell, false, A, G, F);
       A.vmult(R, local_p);
       R -= F;
       R *= -1.0; // rhs holds -R
@@ -511,7 +497,7 @@ double ReynoldsSolver::assemble_jfo_system(const TrilinosWrappers::MPI::Vector &
         cell_A[k].reinit(n, n);
         cell_G[k].reinit(n, n);
         cell_F[k].reinit(n);
-        cell_cavitation_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
+        cell_film_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
       }
   }
   FullMatrix<double> J(n, n);

@@ -157,10 +157,10 @@ private:
                              dealii::TrilinosWrappers::MPI::Vector &residual,
                              dealii::TrilinosWrappers::MPI::Vector &newton_rhs,
                              const bool active_set_step = false);
-  void cell_cavitation_matrices(dealii::FEValues<2> &fe_values,
-                                const dealii::DoFHandler<2>::active_cell_iterator &cell,
-                                const bool with_void, dealii::FullMatrix<double> &A,
-                                dealii::FullMatrix<double> &G, dealii::Vector<double> &F) const;
+  void cell_film_matrices(dealii::FEValues<2> &fe_values,
+                          const dealii::DoFHandler<2>::active_cell_iterator &cell,
+                          const bool with_void, dealii::FullMatrix<double> &A,
+                          dealii::FullMatrix<double> &G, dealii::Vector<double> &F) const;
   double assemble_reynolds_system(const dealii::TrilinosWrappers::MPI::Vector &u,
                                   const bool with_jacobian,
                                   dealii::TrilinosWrappers::MPI::Vector &rhs);
