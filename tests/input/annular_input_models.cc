@@ -1,5 +1,5 @@
 // Bad input to `sealfe annular` is refused with one clear line that names the parameter.
-#include <sealfe/annular_seal.h>
+#include <sealfe/annular/annular_seal.h>
 
 #include <gtest/gtest.h>
 

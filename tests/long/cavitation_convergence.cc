@@ -1,6 +1,6 @@
 // Long study (ctest label "long", not run by CI): JFO mesh convergence of force, moments and
 // cavitated fraction against a fine reference (32 x 512 cells, degree 2), observed orders.
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
 

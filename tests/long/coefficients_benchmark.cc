@@ -2,7 +2,7 @@
 // one batched ReynoldsSolver::linearized_loads call) against the solve it linearises
 // (ReynoldsSolver::run), and the cost of the finite-difference check, over mesh sizes. Prints a
 // table for doc/coefficients.md; the only assertions are that the numbers are finite.
-#include <sealfe/coefficient_solver.h>
+#include <sealfe/coefficients/coefficient_solver.h>
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // the CSV layout (header with units, one row per point), a failing point reported in its row
 // while the rest of the table is kept, the same file on 1 and 2 MPI ranks, the held-out error of
 // an FE table falling with grid refinement, and bad input refused with one line.
-#include <sealfe/coefficient_table.h>
-#include <sealfe/table_sweep.h>
+#include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/applications/table_sweep.h>
 
 #include <gtest/gtest.h>
 

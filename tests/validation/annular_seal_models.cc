@@ -1,6 +1,6 @@
 // Validation of the annular-seal model against Fleming (NASA TM X-73654): closed form against a
 // direct integration of the pressure, the paper's printed numbers and claims, and the run.
-#include <sealfe/annular_seal.h>
+#include <sealfe/annular/annular_seal.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Validation of the GW/CEB asperity contact model in the closed form of Green (2002): the exact
 // plastic integral (Eq. 8/9) and the mean-value elastic approximation (Eq. 6/7) against direct
-// quadrature of Eq. 2a/2b, the printed exponent typos, the Gaussian-tail decay, the seed's "moot
+// quadrature of Eq. 2a/2b, the printed exponent typos, the Gaussian-tail decay, the paper's "moot
 // above h/sigma = 3" argument for its Table 1 seal, derivatives and parameters.
-#include <sealfe/asperity_contact.h>
-#include <sealfe/flow_factors.h>
+#include <sealfe/film/asperity_contact.h>
+#include <sealfe/film/flow_factors.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -192,7 +192,7 @@ TEST(ContactPressure, Table1AgainstQuadratureOfEq1)
 
 TEST(ContactPressure, MootAboveThreeSigmaQuantified)
 {
-  // Seed 001 argues contact is moot once h* > 3. For its Table 1 seal the nominal closing
+  // Green (2002) argues contact is moot once h* > 3. For its Table 1 seal the nominal closing
   // pressure at the operating point (Eq. 22, B = 0.75, po = 500 kPa, pi = 100 kPa, 20 N spring
   // on pi (ro^2 - ri^2) = 1.2704e-3 m^2) is 400 kPa + 15.74 kPa = 415.74 kPa.
   const AsperityContact c = table1_contact();
@@ -219,7 +219,7 @@ TEST(ContactPressure, MootAboveThreeSigmaQuantified)
 
 TEST(ContactPressure, SpringAloneRestsAtEasyContact)
 {
-  // Seed 001 starts its seal "from rest at easy contact (h_min/sigma = 0.35 C0/sigma = 3.5)".
+  // Green (2002) starts its seal "from rest at easy contact (h_min/sigma = 0.35 C0/sigma = 3.5)".
   // With Table 1 (sigma_s = sigma, y_s = 0) the contact pressure equals the spring pressure
   // 20 N / 1.2704e-3 m^2 = 15.74 kPa at h* = 3.5 to the paper's two digits. (y_s = 0.65 sigma,
   // the value 0.045944/beta of the McCool-type relations quoted in the later CEB literature --

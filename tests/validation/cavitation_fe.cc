@@ -5,7 +5,7 @@
 //  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
 //  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
 //    10 kPa, waviness n = 1..12 up to 0.9 C0, and no supply (pi = po = p_cav) is refused.
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <deal.II/base/timer.h>
 

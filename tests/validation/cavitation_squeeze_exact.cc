@@ -7,7 +7,7 @@
 //   a (r0^2 - r_c^2 + 2 r_c^2 ln(r_c/r0)) = p_s  for r0 = ri and r0 = ro,
 // two scalar equations for the two cavity radii, solved here by bisection. The FE JFO solution
 // (2D, Q2) must reproduce the force, the cavitated area and the leakage.
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
-// The linear dynamics fed by the three film levels of design.md section 1 (issue 6): the stable
-// omega2 range of the Wileman & Green reference seal (seed 000, Table 1 reference row, ri/ro =
+// The linear dynamics fed by the three film levels of doc/reynolds.md, Levels (issue 6): the stable
+// omega2 range of the Wileman & Green reference seal (Wileman & Green, Table 1 reference row, ri/ro =
 // 0.8) with Green & Etsion's closed forms (level 0), with finite-element coefficients (level 2)
 // and with a coefficient table read back from CSV (level 1); the same through the command line.
-#include <sealfe/coefficient_solver.h>
-#include <sealfe/coefficient_table.h>
-#include <sealfe/green_etsion.h>
-#include <sealfe/seal_dynamics.h>
-#include <sealfe/stability.h>
-#include <sealfe/table_sweep.h>
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/applications/stability.h>
+#include <sealfe/applications/table_sweep.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -36,7 +36,7 @@ const double omega1 = -2000;                        // rad/s, ring 1 (the "rotor
 const double sweep_from = -40000, sweep_to = 40000; // omega2, as tests/validation/wileman_green
 const unsigned int grid_points = 801;
 
-/// The reference seal of seed 000 (Table 1 reference row): ring 1 = rotor ring at omega1, ring 2
+/// The reference seal of Wileman & Green (Table 1 reference row): ring 1 = rotor ring at omega1, ring 2
 /// = stator ring (swept omega2); c2 = I2/J2.
 SealDynamicsInput reference_seal(const double c2)
 {
@@ -187,7 +187,7 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
               << r2f.high << "]); level 2 - level 0: " << 100 * (r2.low / r0.low - 1) << "% / "
               << 100 * (r2.high / r0.high - 1) << "%; mesh " << 100 * mesh << "%; " << solves
               << " FE coefficient sets\n";
-    // Level 0 is seed 000's Table 1 (tests/validation/wileman_green_models.cc): sanity.
+    // Level 0 is Wileman & Green's Table 1 (tests/validation/wileman_green_models.cc): sanity.
     if (c2 == 0.5)
     {
       EXPECT_NEAR(r0.low, -10901.8, 0.01 * 10901.8);
@@ -224,7 +224,7 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
     // Mesh convergence: the threshold moves between the meshes by no more than the coefficients
     // do. Its sensitivity to a relative change of k11 or d11 is below 1: Table 1's pressure rows
     // (k11 proportional to po - pi, d11 fixed) give d ln(omega) / d ln(k11) = 0.26 to 0.46, and
-    // d11 enters the thresholds only through the damping of the whirl, less than k11 (seed 000
+    // d11 enters the thresholds only through the damping of the whirl, less than k11 (Wileman & Green
     // Eq. 17, the threshold without support damping, does not contain d11 at all). The mesh
     // error must also be a small fraction of the level-0 / level-2 difference.
     EXPECT_LT(mesh, std::max(mesh_k, mesh_d) + 1e-9) << "c2 = " << c2;
@@ -450,7 +450,7 @@ TEST(DynamicsFilmLevels, CommandLineStabilityWithFiniteElementFilm)
   EXPECT_TRUE(s0["film_speed_dependence"].contains("method"));
 }
 
-// `sealfe response` with Film model = finite element (seed 002's default seal, a short sweep).
+// `sealfe response` with Film model = finite element (Varney & Green (2017)'s default seal, a short sweep).
 TEST(DynamicsFilmLevels, CommandLineResponseWithFiniteElementFilm)
 {
   const fs::path d = work_dir("response");

@@ -2,7 +2,7 @@
 // (Ri = ri/ro, eps) x (Fbar, Mbar_x, Mbar_z, Mz/Mx), to the printed precision. The four entries
 // that do not round to the closed forms are listed with the independent evidence that the table,
 // not the formula, is wrong there; the test asserts they remain the only mismatches.
-#include <sealfe/narrow_seal.h>
+#include <sealfe/closed_form/narrow_seal.h>
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ struct Row
   const char *printed[4]; // as printed, "0.869E 01" written "0.869E+01"
 };
 
-// Table I of the paper (seed 004), row numbers 1..80 in the comments.
+// Table I of the paper (Etsion (1977)), row numbers 1..80 in the comments.
 const Row table_I[80] = {
     {0.80, 0.1, {"0.110E-03", "0.887E-05", "0.773E-04", "0.869E+01"}}, // 1
     {0.80, 0.2, {"0.231E-03", "0.374E-04", "0.160E-03", "0.429E+01"}}, // 2
@@ -143,7 +143,7 @@ double closed_form(const Row &row, const int column)
   }
 }
 
-/// The entries of Table I that are misprinted (in the OCR'd seed text, which matches the scanned
+/// The entries of Table I that are misprinted (in the OCR text of the paper, which matches the scanned
 /// report's digits as far as the scan shows: a 3/8 or 4/9 type confusion in each case).
 struct Misprint
 {
@@ -350,7 +350,7 @@ TEST(EtsionTableI, TouchDownLimits)
   }
 }
 
-// The equations as printed (seed 004) cannot be what produced Table I: evaluated literally they
+// The equations as printed (Etsion (1977)) cannot be what produced Table I: evaluated literally they
 // miss it by orders of magnitude; the corrections (doc/narrow_seal.md) reproduce it.
 //  Eq. 29: 1/(2 eps) for 1/(2 eps^2);  Eq. 43: (1/2) ln[(1-eps^2)/(1-eps Ri^2)] for
 //  (1/eps^2) ln[(1-eps^2)/(1-eps^2 Ri^2)];  Eq. 56: pi/(2 eps) for pi/(2 eps^2);

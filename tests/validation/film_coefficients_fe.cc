@@ -5,9 +5,9 @@
 //    exact 1D solution (curvature included);
 //  - Green & Etsion's narrow-seal k11, d11 and (omega/2) d11 as ri/ro -> 1, and on the Varney &
 //    Green seal;
-//  - the symmetries of an axisymmetric film, and the FMRR speeds (seed 000).
-#include <sealfe/coefficient_solver.h>
-#include <sealfe/green_etsion.h>
+//  - the symmetries of an axisymmetric film, and the FMRR speeds (Wileman & Green).
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/closed_form/green_etsion.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -509,7 +509,7 @@ TEST(FilmCoefficientsFE, AxisymmetricFilmIsIsotropicAndAxialDecouples)
 
 TEST(FilmCoefficientsFE, TwoRotatingRingsGiveTheFMRRCrossCoupling)
 {
-  // Seed 000: the film's direct stiffness k11 and damping d11 do not depend on the ring speeds;
+  // Wileman & Green: the film's direct stiffness k11 and damping d11 do not depend on the ring speeds;
   // the cross-coupled stiffness is D11 = (omega1 + omega2)/2 d11. The FE operator sees the ring
   // speeds only through the mean surface speed, and at an axisymmetric equilibrium a tilt
   // perturbation's Couette term omega_m d(dh)/dtheta equals a tilt-rate squeeze term, so

@@ -1,7 +1,7 @@
 // Validation of the Patir & Cheng average-flow factors (FlowFactors): published fits, symmetry,
 // direction of the pattern effect, smooth limits with their analytic rates, closed forms against
 // quadrature of their defining integrals, derivatives, clamping and parameters.
-#include <sealfe/flow_factors.h>
+#include <sealfe/film/flow_factors.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>

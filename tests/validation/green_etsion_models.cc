@@ -1,7 +1,7 @@
 // Level-0 film coefficients (Green & Etsion narrow seal) against an independent quadrature of the
-// narrow-seal pressures of Varney & Green (seed 002 Eq. 12 and 14), and the verdict on the seal
-// parameter S: (1 - Ri)^2 (seed 000) or (1 - Ri^2) (seed 002 Eq. 21).
-#include <sealfe/green_etsion.h>
+// narrow-seal pressures of Varney & Green (Varney & Green (2017) Eq. 12 and 14), and the verdict on the seal
+// parameter S: (1 - Ri)^2 (Wileman & Green) or (1 - Ri^2) (Varney & Green (2017) Eq. 21).
+#include <sealfe/closed_form/green_etsion.h>
 
 #include <gtest/gtest.h>
 
@@ -65,7 +65,7 @@ enum class Arms
 };
 
 /// F = (F_z, M_x, M_y) of the full-film pressure p_s (Eq. 12) + p_d (Eq. 14), with
-/// M_x = int p y dA, M_y = -int p x dA (design.md section 2).
+/// M_x = int p y dA, M_y = -int p x dA (doc/reynolds.md, conventions).
 std::array<double, 3> loads(const Seal &s, const Motion &m, const Arms arms)
 {
   static std::vector<double> gx, gw;
@@ -137,7 +137,7 @@ GreenEtsionCoefficients closed_form(const Seal &s)
   return GreenEtsionCoefficients(s.ri, s.ro, s.c0, s.beta, s.mu, s.p_out - s.p_in);
 }
 
-// Seed 002 Table 1 (Varney & Green) and seed 000's reference seal (Wileman & Green).
+// Varney & Green (2017) Table 1 (Varney & Green) and Wileman & Green's reference seal (Wileman & Green).
 Seal varney_green()
 {
   return {0.0355, 0.0408, 1e-6, 1e-3, 1.2e-3, 0, 4e5, 1000};
@@ -216,7 +216,7 @@ TEST(GreenEtsion, AnnulusQuadratureWithinNarrowSealBounds)
   }
 }
 
-// The S verdict, on both papers' seals: the quadrature of seed 002's own Eq. 14 (true annulus)
+// The S verdict, on both papers' seals: the quadrature of Varney & Green (2017)'s own Eq. 14 (true annulus)
 // against d11 = 2 pi Rm^3 G0 S ro^4 / (C0 omega) with each printed S.
 TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
 {
@@ -226,8 +226,8 @@ TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
     coefficients(s, Arms::annulus, K, D);
     const GreenEtsionCoefficients g = closed_form(s);
     const double Ri = s.ri / s.ro, Rm = 0.5 * (1 + Ri), omega = 1000;
-    const double S_seed000 = 6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * std::pow(1 - Ri, 2);
-    const double S_seed002 = 6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * (1 - Ri * Ri);
+    const double S_wileman_green = 6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * std::pow(1 - Ri, 2);
+    const double S_varney_green = 6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * (1 - Ri * Ri);
     auto d11 = [&](double S)
     {
       return 2 * M_PI * std::pow(Rm, 3) * g.damping_parameter() * S * std::pow(s.ro, 4) /
@@ -235,7 +235,7 @@ TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
     };
     const double rm = 0.5 * (s.ri + s.ro);
     const double lo = std::pow(s.ri / rm, 3), hi = std::pow(s.ro / rm, 3);
-    const double ratio000 = D[1][1] / d11(S_seed000), ratio002 = D[1][1] / d11(S_seed002);
+    const double ratio000 = D[1][1] / d11(S_wileman_green), ratio002 = D[1][1] / d11(S_varney_green);
     RecordProperty(s.ri > 0.035 ? "varney_green_ratio_S000" : "wileman_green_ratio_S000",
                    std::to_string(ratio000));
     RecordProperty(s.ri > 0.035 ? "varney_green_ratio_S002" : "wileman_green_ratio_S002",
@@ -243,8 +243,8 @@ TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
     EXPECT_GE(ratio000, lo);
     EXPECT_LE(ratio000, hi);
     EXPECT_LT(ratio002, lo); // (1 + Ri)/(1 - Ri) = 9 (Ri = 0.8) or 14.4 (Ri = 0.87) too large
-    EXPECT_NEAR(g.angular_damping(), d11(S_seed000), 1e-12 * d11(S_seed000));
-    EXPECT_NEAR(g.seal_parameter(omega), S_seed000, 1e-12 * S_seed000);
+    EXPECT_NEAR(g.angular_damping(), d11(S_wileman_green), 1e-12 * d11(S_wileman_green));
+    EXPECT_NEAR(g.seal_parameter(omega), S_wileman_green, 1e-12 * S_wileman_green);
   }
 }
 
@@ -273,7 +273,7 @@ TEST(GreenEtsion, FlatFaceLimits)
   EXPECT_NEAR(D[1][1] / d_flat, 1, 1e-9);
 }
 
-// Seed 000: "The maximum angular fluid stiffness occurs when beta = 12.5, which corresponds to a
+// Wileman & Green: "The maximum angular fluid stiffness occurs when beta = 12.5, which corresponds to a
 // dimensional coning angle of 3.13 milliradians" (Ri = 0.8, ro = 0.04 m, C0 = 10 um). From
 // k11 ~ (beta Ri - 1)/(2 + beta (1 - Ri))^2 the optimum is beta = 2 / (Ri (1 - Ri)).
 TEST(GreenEtsion, StiffestConingOfWilemanGreenSeal)

@@ -1,7 +1,7 @@
 // Validation of the narrow-seal film model (level 0): its pressure solves the narrow Reynolds
 // equation, its loads integrate to Etsion's closed forms, conservation and symmetry hold, and the
 // textbook limits (parallel-plate squeeze film, slot leakage, Couette torque) come out.
-#include <sealfe/narrow_seal.h>
+#include <sealfe/closed_form/narrow_seal.h>
 
 #include <gtest/gtest.h>
 
@@ -247,7 +247,7 @@ TEST(NarrowSeal, HydrostaticLeakageConservedAndClassical)
     EXPECT_LT(std::abs(l.moment_transverse), 1e-12 * std::abs(l.force_z) * ro);
   }
   // With tilt too (no rotation), inflow = outflow, and zero transverse moment: the hydrostatic
-  // pressure is symmetric about the tilt line (Etsion p. 17; design.md section 4.3).
+  // pressure is symmetric about the tilt line (Etsion p. 17; doc/narrow_seal.md).
   FilmThickness film;
   film.tilt = 0.6 * film.clearance / film.outer_radius;
   film.tilt_angle = 2.0;

@@ -2,7 +2,7 @@
 // error: checked on the default seal with a 0.5-eps tilt and waviness, for degrees 1 and 2 and
 // several meshes, against a reference from a much finer degree-4 solve (whose own error is
 // orders of magnitude below the tested ones).
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 //  - a manufactured solution on a coned, tilted, rotating film: L2 error order k + 1;
 //  - the discrete mass balance of the consistent boundary fluxes;
 //  - the error estimate of the loads is an upper bound of the true error.
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <deal.II/base/quadrature_lib.h>
 

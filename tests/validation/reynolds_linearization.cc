@@ -1,7 +1,7 @@
 // The linearised Reynolds solve (one extra solve with the same factorisation) against central
 // finite differences of the nonlinear solve: the loads are smooth in z, the tilts and their
 // rates, so the two agree to the O(step^2) truncation of the differences (1e-6 relative here).
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
 

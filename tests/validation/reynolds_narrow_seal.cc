@@ -3,8 +3,8 @@
 // departs from Etsion's full-film closed form (Eq. 58, corrected) only through the narrow-seal
 // approximations (curvature, circumferential pressure flow), which are O((1 - ri/ro)^2).
 // Half-Sommerfeld: the same for force, restoring and transverse moment (Eqs. 29, 43, 56).
-#include <sealfe/narrow_seal.h>
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/closed_form/narrow_seal.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 //    (gamma > 1) less (phi_r > 1 resp. < 1, Patir & Cheng 1978);
 //  - the shear-flow term is antisymmetric in which face is rough (the full-film problem is
 //    linear in phi_s = (V_r1 - V_r2) Phi_s);
-//  - mixed lubrication (seed 001 Table 1 asperities): total load falls monotonically with the
+//  - mixed lubrication (Green (2002) Table 1 asperities): total load falls monotonically with the
 //    clearance and the asperity share vanishes above h/sigma ~ 3-4 (Green 2002).
-#include <sealfe/reynolds_solver.h>
+#include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-// FMRR stability (Wileman & Green, seed 000): Table 1 stable speed ranges, eigenvalues against
+// FMRR stability (Wileman & Green, Wileman & Green): Table 1 stable speed ranges, eigenvalues against
 // the Routh-Hurwitz route (Appendix B), the closed-form criterion without support damping
 // (Eq. 17) and its FMR limit (Eq. 20).
-#include <sealfe/green_etsion.h>
-#include <sealfe/seal_dynamics.h>
+#include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/dynamics/seal_dynamics.h>
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@ using namespace sealfe;
 
 namespace
 {
-/// The reference seal of seed 000 (Table 1 and text): element 1 = rotor ring at omega1 = -2000
+/// The reference seal of Wileman & Green (Table 1 and text): element 1 = rotor ring at omega1 = -2000
 /// rad/s, element 2 = stator ring (swept omega2). c_n = I_n / J_n.
 struct Case
 {
@@ -62,7 +62,7 @@ struct Row
   double min_short, max_short, min_long, max_long;
 };
 
-// Seed 000 Table 1, every row (the reference row repeated in each group as printed).
+// Wileman & Green Table 1, every row (the reference row repeated in each group as printed).
 const Row table1[] = {
     {"I1", 4.0e-4, -14011.8, 9481.8, -1971.2, 3473.5},
     {"I1", 8.0e-4, -10901.8, 6024.2, -2816.1, 2776.3},
@@ -412,9 +412,9 @@ TEST(WilemanGreen, FmsThresholdWithoutSupportDamping)
 
 // ---------------------------------------------------------------------------------------------
 // `sealfe stability` front end, on the example prm/stability.prm (Table 1's reference seal).
-#include <sealfe/film_thickness.h>
-#include <sealfe/operating_conditions.h>
-#include <sealfe/stability.h>
+#include <sealfe/film/film_thickness.h>
+#include <sealfe/film/operating_conditions.h>
+#include <sealfe/applications/stability.h>
 
 #include <array>
 #include <filesystem>

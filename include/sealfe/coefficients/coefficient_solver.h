@@ -1,0 +1,147 @@
+// CoefficientSolver: the film stiffness K and damping D of the finite-element Reynolds solve (level
+// 2 of doc/reynolds.md), by linearising the discrete Reynolds system or by central differences.
+#pragma once
+
+#include <sealfe/film/film_coefficients.h>
+#include <sealfe/film/film_loads.h>
+#include <sealfe/film/film_thickness.h>
+#include <sealfe/film/operating_conditions.h>
+#include <sealfe/film/reynolds_solver.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+#include <utility>
+
+namespace sealfe
+{
+/// How the coefficients are computed: prm subsection "Coefficients".
+struct CoefficientSettings
+{
+  enum class Method
+  {
+    /// The Reynolds system linearised about the solved pressure: one extra linear solve per
+    /// degree of freedom and per rate, with the factorisation of the operating-point solve
+    /// (ReynoldsSolver::linearized_loads).
+    perturbation,
+    /// Central differences of the nonlinear solve: two full solves per column of K and of D.
+    finite_difference
+  };
+
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  /// Throws std::runtime_error naming the parameter if a step is not positive and finite.
+  void parse_parameters(dealii::ParameterHandler &prm);
+
+  /// Finite-difference steps for one operating point. Displacements are scaled by the film:
+  /// axial C0, tilt C0/ro (the tilt at which the faces would touch is about C0/ri). Rates are
+  /// scaled by the displacement step times omega_ref = max(|omega1|, |omega2|, 1 rad/s), so that
+  /// the squeeze term dh/dt is of the size of the Couette term omega dh/dtheta of the displacement
+  /// step. (In full film the loads are linear in the rates and any rate step is exact.)
+  struct Steps
+  {
+    double axial;      // m
+    double tilt;       // rad
+    double axial_rate; // m/s
+    double tilt_rate;  // rad/s
+  };
+  Steps steps(const FilmThickness &film, const OperatingConditions &conditions) const;
+
+  Method method = Method::perturbation;
+  double relative_step = 1e-4; // of C0 and C0/ro
+  double axial_step = 0;       // m; > 0 overrides relative_step * C0
+  double tilt_step = 0;        // rad; > 0 overrides relative_step * C0/ro
+};
+
+std::string to_string(CoefficientSettings::Method method);
+
+/// Everything `sealfe coefficients` reports about one operating point.
+struct CoefficientResult
+{
+  FilmCoefficients coefficients; // level 2
+  FilmLoads loads;               // of the operating point itself
+
+  /// Discretisation error estimate of every entry of K and D and of the loads: the difference to
+  /// the same computation on a mesh twice as coarse, divided by 2^(k+1) - 1 (the coefficients
+  /// are linear functionals of the perturbed pressure, which converges like the pressure).
+  bool has_error_estimate = false;
+  FilmCoefficients::Matrix3 stiffness_error{}, damping_error{};
+  FilmLoads load_error;
+  dealii::types::global_dof_index coarse_dofs = 0;
+
+  CoefficientSettings::Method method = CoefficientSettings::Method::perturbation;
+  CoefficientSettings::Steps steps{}; // finite difference only
+  std::string linearization;          // what the method does at the cavitation boundary
+  dealii::types::global_dof_index dofs = 0;
+  unsigned int degree = 0;
+  double solve_time = 0;          // s, the operating-point solve (setup, assembly, factorisation)
+  double coefficient_time = 0;    // s, the 6 linearised solves (or 12 perturbed solves)
+  double error_estimate_time = 0; // s, everything on the coarse mesh
+
+  /// summary.json content: loads (force_z, ...), FilmCoefficients::to_json() ("stiffness",
+  /// "damping", row-major SI), "error_estimate" {"stiffness", "damping", loads...}, timings.
+  nlohmann::json to_json() const;
+};
+
+/// Film coefficients from the finite-element Reynolds solver. The discretisation (mesh, degree,
+/// cavitation model) is that of the owned ReynoldsSolver, so whatever cavitation or roughness
+/// model the solver has is linearised by the same code path.
+///
+///   CoefficientSolver s(comm);
+///   s.parse_parameters(prm);           // Discretization, Cavitation, Coefficients
+///   CoefficientResult r = s.compute(film, conditions);
+///   FilmCoefficients k = r.coefficients;  // K = -dF/dq, D = -dF/dq_dot, q = (z, tilt_x, tilt_y)
+class CoefficientSolver
+{
+public:
+  explicit CoefficientSolver(MPI_Comm comm);
+
+  /// ReynoldsSolver's subsections and "Coefficients".
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+
+  /// The solver whose discretisation is used (mesh(), polynomial_degree, cavitation, ...). After
+  /// compute() it holds the solution of the operating point on the fine mesh (for output).
+  ReynoldsSolver &reynolds() { return solver; }
+  const ReynoldsSolver &reynolds() const { return solver; }
+
+  /// K, D and the loads about the operating point, with the error estimate if the solver's
+  /// "Error estimate" is on and the mesh can be coarsened. Throws std::runtime_error (from the
+  /// solver) on bad geometry or a failed solve.
+  CoefficientResult compute(const FilmThickness &film, const OperatingConditions &conditions);
+
+  /// Only the coefficients on the mesh `coarsening` levels coarser than asked for (no estimate).
+  FilmCoefficients coefficients(const FilmThickness &film, const OperatingConditions &conditions,
+                                const unsigned int coarsening = 0);
+
+  /// Level-2 film model for the dynamics module (seal_dynamics.h FilmModel): the coefficients of
+  /// `film` with the ring speeds replaced by the arguments. Results are cached per speed pair.
+  /// The returned function refers to this solver, which must outlive it.
+  std::function<FilmCoefficients(double, double)> film_model(const FilmThickness &film,
+                                                             const OperatingConditions &conditions);
+
+  CoefficientSettings settings;
+
+private:
+  /// The loads of the operating point and K, D on the mesh `coarsening` levels coarser.
+  std::pair<FilmLoads, FilmCoefficients>
+  compute_on_mesh(const FilmThickness &film, const OperatingConditions &conditions,
+                  const unsigned int coarsening, double &solve_time, double &coefficient_time);
+
+  MPI_Comm comm;
+  ReynoldsSolver solver;
+};
+
+/// `sealfe coefficients [case.prm]`: K and D (and the loads) of one operating point, with an error
+/// estimate of every entry and Green & Etsion's narrow-seal values for comparison -> summary.json.
+namespace coefficients
+{
+void declare_parameters(dealii::ParameterHandler &prm);
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
+                   MPI_Comm comm);
+} // namespace coefficients
+
+} // namespace sealfe

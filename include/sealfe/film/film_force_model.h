@@ -1,0 +1,79 @@
+// FilmForceModel: what the ring dynamics asks of the film — the loads (force, moments, leakage,
+// friction, contact) and optionally the stiffness and damping for a ring state — behind one
+// interface that every film level (closed form, table, finite element) implements.
+#pragma once
+
+#include <sealfe/film/film_coefficients.h>
+#include <sealfe/film/film_loads.h>
+#include <sealfe/film/film_thickness.h>
+#include <sealfe/film/operating_conditions.h>
+
+#include <string>
+
+namespace sealfe
+{
+/// The fidelity of the film (doc/reynolds.md, Levels): 0 closed forms of the narrow seal,
+/// 1 interpolation in a table of finite-element results made beforehand, 2 a finite-element
+/// Reynolds solve at each evaluation.
+enum class FilmLevel
+{
+  closed_form = 0,
+  table = 1,
+  finite_element = 2
+};
+/// "closed form", "table", "finite element".
+std::string to_string(FilmLevel level);
+/// Inverse of to_string; throws std::runtime_error (one line naming the accepted values).
+FilmLevel film_level_from_string(const std::string &name);
+/// The prm pattern of the three names, "closed form|table|finite element".
+std::string film_level_pattern();
+
+/// The state of the face pair that the dynamics changes in time: position and velocity of the
+/// flexibly mounted ring's face relative to its mate (conventions of film_thickness.h: the face
+/// moves axially by w = z + tilt_x y - tilt_y x), the coning, the ring speeds and the sealed
+/// pressures. Everything else (radii, C0, waviness, viscosity, roughness, mesh) belongs to the
+/// model and is fixed when it is built. SI units.
+struct FilmState
+{
+  double axial_offset = 0;   ///< z (m): the film at r = ri on the tilt's neutral line is C0 + z
+  double tilt_x = 0;         ///< rad, relative tilt vector of the face pair
+  double tilt_y = 0;         ///< rad
+  double axial_velocity = 0; ///< dz/dt (m/s)
+  double tilt_rate_x = 0;    ///< rad/s
+  double tilt_rate_y = 0;    ///< rad/s
+  double coning = 0;         ///< beta (rad), positive: the film opens towards ro
+  double rotor_speed = 0;    ///< rad/s
+  double stator_speed = 0;   ///< rad/s
+  double inner_pressure = 0; ///< Pa
+  double outer_pressure = 0; ///< Pa
+  double time = 0;           ///< s (time-dependent films, e.g. features turning with a ring)
+
+  /// The state of a film and an operating point (time 0).
+  static FilmState from(const FilmThickness &film, const OperatingConditions &conditions);
+  /// `base` with this state's position, velocity and coning written into it.
+  FilmThickness apply(FilmThickness base) const;
+  /// `base` with this state's speeds and pressures written into it.
+  OperatingConditions apply(OperatingConditions base) const;
+};
+
+/// The film seen by the ring dynamics. An implementation is built for one seal (geometry beyond
+/// the state, fluid, roughness, discretisation) and may keep caches, factorisations or meshes
+/// between calls, so calls are not thread-safe.
+class FilmForceModel
+{
+public:
+  virtual ~FilmForceModel() = default;
+  virtual FilmLevel level() const = 0;
+  /// Short description for summaries ("narrow seal, half-Sommerfeld", "table file.csv, cubic").
+  virtual std::string description() const = 0;
+  /// Loads of the film (and asperity contact, if the model has it) on the flexibly mounted ring
+  /// at `state` (film_loads.h for signs and units). Throws std::runtime_error with a one-line
+  /// reason when the state is outside what the model can evaluate.
+  virtual FilmLoads loads(const FilmState &state) const = 0;
+  /// Whether coefficients() is available.
+  virtual bool provides_coefficients() const { return true; }
+  /// Stiffness and damping of the film about `state` (film_coefficients.h).
+  virtual FilmCoefficients coefficients(const FilmState &state) const = 0;
+};
+
+} // namespace sealfe

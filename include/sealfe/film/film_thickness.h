@@ -1,0 +1,83 @@
+// FilmThickness: the gap h(r, theta) between the seal faces on the annular dam ri <= r <= ro,
+// and its rate dh/dt from prescribed squeeze motion (doc/reynolds.md, conventions).
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <cmath>
+#include <string>
+
+namespace sealfe
+{
+/// Film thickness of a coned, tilted, wavy face pair. Reads subsection "Geometry" (shape) and
+/// "Squeeze motion" (velocities of the flexible ring, for the squeeze term and damping).
+///
+///   h(r, theta) = C0 + z + beta (r - ri) + gamma r cos(theta - psi)
+///                 + A_w cos(n_w (theta - theta_w))
+///
+/// The flexible ring's degrees of freedom are q = (z, tilt_x, tilt_y): its face moves axially by
+/// w = z + tilt_x * y - tilt_y * x, so gamma cos(psi) = -tilt_y and gamma sin(psi) = tilt_x.
+class FilmThickness
+{
+public:
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+
+  /// Throws std::runtime_error naming the problem if the geometry is impossible (ri >= ro,
+  /// C0 <= 0, ...) or the film touches down (min h <= 0, with where and by how much) unless
+  /// `allow_touch_down` (rough faces with an asperity contact model carry it).
+  void validate(const bool allow_touch_down = false) const;
+
+  double value(const double r, const double theta) const
+  {
+    return clearance + axial_offset + coning * (r - inner_radius) +
+           tilt * r * std::cos(theta - tilt_angle) +
+           wave_amplitude * std::cos(wave_number * (theta - wave_phase));
+  }
+  /// dh/dr
+  double d_dr(const double /*r*/, const double theta) const
+  {
+    return coning + tilt * std::cos(theta - tilt_angle);
+  }
+  /// dh/dtheta
+  double d_dtheta(const double r, const double theta) const
+  {
+    return -tilt * r * std::sin(theta - tilt_angle) -
+           wave_amplitude * wave_number * std::sin(wave_number * (theta - wave_phase));
+  }
+  /// dh/dt from the prescribed velocities (z_dot, tilt_x_dot, tilt_y_dot) of the flexible ring.
+  double d_dt(const double r, const double theta) const
+  {
+    return axial_velocity + tilt_rate_x * r * std::sin(theta) - tilt_rate_y * r * std::cos(theta);
+  }
+
+  /// Minimum of h over the dam, and where it occurs (found on a fine polar grid + analytic
+  /// radial extremes: h is linear in r for fixed theta).
+  struct Extremum
+  {
+    double value, r, theta;
+  };
+  Extremum minimum() const;
+  Extremum maximum() const;
+
+  double tilt_x() const { return tilt * std::sin(tilt_angle); }
+  double tilt_y() const { return -tilt * std::cos(tilt_angle); }
+  /// Set gamma, psi from the tilt vector (tilt_x, tilt_y) of the flexible ring.
+  void set_tilt_vector(const double tilt_x, const double tilt_y);
+
+  double inner_radius = 0.0355; // m
+  double outer_radius = 0.0408; // m
+  double clearance = 1e-6;      // m, C0
+  double coning = 1e-3;         // rad, beta
+  double tilt = 0;              // rad, gamma
+  double tilt_angle = 0;        // rad, psi
+  double wave_amplitude = 0;    // m
+  double wave_number = 0;       // waves per revolution
+  double wave_phase = 0;        // rad
+  double axial_offset = 0;      // m, z of the flexible ring about the set point
+  double axial_velocity = 0;    // m/s
+  double tilt_rate_x = 0;       // rad/s
+  double tilt_rate_y = 0;       // rad/s
+};
+
+} // namespace sealfe

@@ -1,0 +1,227 @@
+#include <sealfe/applications/response.h>
+#include <sealfe/dynamics/seal_dynamics.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+namespace response
+{
+void declare_parameters(dealii::ParameterHandler &prm)
+{
+  using namespace dealii::Patterns;
+  SealDynamicsInput::declare_parameters(prm);
+  prm.enter_subsection("Forced response");
+  prm.declare_entry("Swept speed", "Rotor speed", Selection("Rotor speed|Stator speed"),
+                    "Which ring's speed is swept; the other keeps its Operating conditions value.");
+  prm.declare_entry("Speed from", "10", Double(), "First speed of the sweep (rad/s).");
+  prm.declare_entry("Speed to", "5000", Double(), "Last speed of the sweep (rad/s).");
+  prm.declare_entry("Speed points", "500", Integer(2), "Number of speeds (equally spaced).");
+  prm.declare_entry("Plot", "true", Bool(),
+                    "Write response.png (relative tilt against speed with the contact limit) "
+                    "with scripts/plot_response.py, if python3 with matplotlib is found.");
+  prm.declare_entry("Python", "", Anything(),
+                    "Python interpreter for the plot; empty: the first of /usr/bin/python3 and "
+                    "python3 that imports matplotlib.");
+  prm.declare_entry("Plot script", "", Anything(),
+                    "Path of plot_response.py; empty: scripts/plot_response.py of the source "
+                    "tree sealfe was built from.");
+  prm.leave_subsection();
+}
+
+namespace
+{
+bool file_exists(const std::string &path)
+{
+  return std::ifstream(path).good();
+}
+
+std::string quote(const std::string &s)
+{
+  std::string q = "'";
+  for (const char c : s)
+    q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// Runs the plot script; returns the PNG name or an empty string (and why, in note).
+std::string plot(const std::string &python_setting, const std::string &script_setting,
+                 const std::string &dir, std::string &note)
+{
+  std::string script = script_setting;
+  if (script.empty())
+  {
+    // source/response.cc -> <source tree>/scripts/plot_response.py
+    std::string here = __FILE__;
+    const auto slash = here.find_last_of('/');
+    const std::string source_dir = (slash == std::string::npos) ? "." : here.substr(0, slash);
+    script = source_dir + "/../scripts/plot_response.py";
+  }
+  if (!file_exists(script))
+  {
+    note = "plot skipped: " + script + " not found";
+    return "";
+  }
+  std::vector<std::string> candidates;
+  if (!python_setting.empty())
+    candidates.push_back(python_setting);
+  else
+    candidates = {"/usr/bin/python3", "python3"};
+  for (const auto &py : candidates)
+  {
+    const std::string probe = quote(py) + " -c 'import matplotlib' > /dev/null 2>&1";
+    if (std::system(probe.c_str()) != 0)
+      continue;
+    const std::string cmd = quote(py) + " " + quote(script) + " " + quote(dir + "/response.csv") +
+                            " " + quote(dir + "/response.png") + " > /dev/null 2>&1";
+    if (std::system(cmd.c_str()) == 0 && file_exists(dir + "/response.png"))
+      return "response.png";
+    note = "plot failed: " + cmd;
+    return "";
+  }
+  note = "plot skipped: no python3 with matplotlib";
+  return "";
+}
+
+/// Contiguous runs of grid speeds where flag holds, as [first, last] pairs.
+nlohmann::json runs(const std::vector<double> &speeds, const std::vector<bool> &flag)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (unsigned int i = 0; i < speeds.size(); ++i)
+    if (flag[i] && (i == 0 || !flag[i - 1]))
+    {
+      unsigned int j = i;
+      while (j + 1 < speeds.size() && flag[j + 1])
+        ++j;
+      out.push_back({speeds[i], speeds[j]});
+    }
+  return out;
+}
+} // namespace
+
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
+                   const FilmCoefficientProvider &finite_element)
+{
+  SealDynamicsInput input;
+  input.parse_parameters(prm);
+  input.finite_element = finite_element;
+  input.validate();
+  prm.enter_subsection("Forced response");
+  const bool swept_rotor = prm.get("Swept speed") == "Rotor speed";
+  const double from = prm.get_double("Speed from"), to = prm.get_double("Speed to");
+  const unsigned int n = prm.get_integer("Speed points");
+  const bool want_plot = prm.get_bool("Plot");
+  const std::string python = prm.get("Python"), script = prm.get("Plot script");
+  prm.leave_subsection();
+  if (!std::isfinite(from) || !std::isfinite(to) || !(to > from))
+  {
+    std::ostringstream s;
+    s << "Forced response: Speed to (" << to << " rad/s) must be greater than Speed from (" << from
+      << " rad/s)";
+    throw std::runtime_error(s.str());
+  }
+
+  const double fixed = swept_rotor ? input.operating.stator_speed : input.operating.rotor_speed;
+  // Level 2: the FE coefficients at a few speeds of the sweep, interpolated in between.
+  const SweepFilm film = input.sweep_film(swept_rotor ? AngularSealDynamics::SweptRing::rotor
+                                                      : AngularSealDynamics::SweptRing::stator,
+                                          fixed, from, to);
+  const AngularSealDynamics dynamics = input.build(film.model);
+  const double limit = input.contact_tilt();
+  const double C0 = input.geometry.clearance, ro = input.geometry.outer_radius;
+
+  const std::string csv = "response.csv";
+  std::ofstream out(output_directory + "/" + csv);
+  if (!out)
+    throw std::runtime_error("Forced response: cannot write " + output_directory + "/" + csv);
+  out << "# steady-state response to the misalignments; tilts in rad (largest magnitude over "
+         "time), phase in degrees of the synchronous relative tilt against the rotor angle, "
+         "speeds in rad/s; stable = 0: the response is not reached (an unstable mode grows)\n";
+  out << "swept_speed,rotor_speed,stator_speed,stator_tilt,rotor_tilt,relative_tilt,"
+         "relative_tilt_synchronous,relative_tilt_phase_deg,relative_tilt_static,"
+         "normalized_relative_tilt,contact_tilt,contact_margin,stable\n";
+  out.precision(10);
+  std::vector<double> speeds;
+  std::vector<bool> contact, unstable;
+  double peak = -1, speed_at_peak = 0, min_margin = INFINITY;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const double w = from + (to - from) * i / (n - 1);
+    const double wr = swept_rotor ? w : fixed, ws = swept_rotor ? fixed : w;
+    const ForcedResponse r = dynamics.forced_response(wr, ws);
+    const double rel = ForcedResponse::max_magnitude(r.relative_tilt);
+    const HarmonicTilt sync = ForcedResponse::at_frequency(r.relative_tilt, std::abs(wr));
+    const HarmonicTilt stat = ForcedResponse::at_frequency(r.relative_tilt, 0.0);
+    const double sync_amp = (wr != 0.0) ? std::abs(sync.forward) + std::abs(sync.backward) : 0;
+    // a rotor spinning in -theta whirls backward: its phase is that of the backward part
+    const std::complex<double> sync_vec = (wr >= 0) ? sync.forward : sync.backward;
+    const double phase = (wr != 0.0 && sync_amp > 0) ? std::arg(sync_vec) * 180 / M_PI : 0.0;
+    const bool stable = dynamics.is_stable(wr, ws);
+    out << w << "," << wr << "," << ws << "," << ForcedResponse::max_magnitude(r.stator_tilt) << ","
+        << ForcedResponse::max_magnitude(r.rotor_tilt) << "," << rel << "," << sync_amp << ","
+        << phase << "," << std::abs(stat.forward) << "," << rel * ro / C0 << "," << limit << ","
+        << limit - rel << "," << int(stable) << "\n";
+    speeds.push_back(w);
+    contact.push_back(rel > limit);
+    unstable.push_back(!stable);
+    if (rel > peak)
+    {
+      peak = rel;
+      speed_at_peak = w;
+    }
+    min_margin = std::min(min_margin, limit - rel);
+  }
+  out.close();
+
+  nlohmann::json summary;
+  summary["configuration"] = to_string(input.configuration);
+  const FilmCoefficients fc =
+      dynamics.film_coefficients(input.operating.rotor_speed, input.operating.stator_speed);
+  summary["film_model"] = fc.model;
+  summary["film_model_level"] = input.film_model_level();
+  summary["film_coefficients"] = fc.to_json();
+  summary["film_speed_dependence"] = film.description;
+  if (film.interpolation)
+    // the interpolation error around the speed of the largest relative tilt
+    summary["film_speed_dependence"]["interpolation_check"] =
+        film.interpolation->check_report({speed_at_peak}, input.geometry.outer_radius);
+  summary["swept_speed"] = swept_rotor ? "rotor" : "stator";
+  summary["speed_range"] = {from, to};
+  summary["contact_tilt"] = limit;
+  summary["peak_relative_tilt"] = peak;
+  summary["speed_at_peak_relative_tilt"] = speed_at_peak;
+  summary["min_contact_margin"] = min_margin;
+  summary["contact"] = min_margin < 0;
+  summary["contact_speed_ranges"] = runs(speeds, contact);
+  summary["unstable_speed_ranges"] = runs(speeds, unstable);
+  // forward synchronous critical speed of the rotor ring on its own support (Varney & Green (2017): the
+  // shaft): sqrt(k_s / (I_t - I_p)); none for a thin rotor (I_t <= I_p)
+  const RingProperties &rotor = input.rotor;
+  summary["rotor_critical_speed"] =
+      (dynamics.rotor_is_flexible() && rotor.transverse_inertia > rotor.polar_inertia)
+          ? nlohmann::json(std::sqrt(rotor.support_stiffness /
+                                     (rotor.transverse_inertia - rotor.polar_inertia)))
+          : nlohmann::json(nullptr);
+  nlohmann::json files = {csv};
+  summary["plot"] = nullptr;
+  if (want_plot)
+  {
+    std::string note;
+    const std::string png = plot(python, script, output_directory, note);
+    if (!png.empty())
+    {
+      files.push_back(png);
+      summary["plot"] = png;
+    }
+    else
+      summary["plot_note"] = note;
+  }
+  summary["files"] = files;
+  return summary;
+}
+} // namespace response
+} // namespace sealfe

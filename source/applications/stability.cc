@@ -1,0 +1,266 @@
+#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/applications/stability.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+namespace stability
+{
+void declare_parameters(dealii::ParameterHandler &prm)
+{
+  using namespace dealii::Patterns;
+  SealDynamicsInput::declare_parameters(prm);
+  prm.enter_subsection("Stability");
+  prm.declare_entry("Swept speed", "Rotor speed", Selection("Rotor speed|Stator speed"),
+                    "Which ring's speed is swept for the stable range; the other keeps its value "
+                    "from Operating conditions.");
+  prm.declare_entry("Sweep from", "-20000", Double(), "Lowest swept speed (rad/s).");
+  prm.declare_entry("Sweep to", "20000", Double(), "Highest swept speed (rad/s).");
+  prm.declare_entry("Grid points", "801", Integer(2),
+                    "Speeds at which stability is evaluated before each change of verdict is "
+                    "refined by bisection; a stable or unstable band narrower than the spacing "
+                    "can be missed.");
+  prm.declare_entry("Criterion", "eigenvalues", Selection("eigenvalues|Routh-Hurwitz"),
+                    "Stability test for the sweep: eigenvalues of the first-order system "
+                    "(LAPACK; any film) or the Hurwitz determinants of Wileman & Green Appendix B "
+                    "(isotropic film only). The summary reports both verdicts at the operating "
+                    "point when both apply.");
+  prm.declare_entry("Second parameter", "none",
+                    Selection("none|" + SealDynamicsInput::parameter_names()),
+                    "Optional study: the stable range is recomputed for each of the Second "
+                    "parameter values and written to stability_sweep.csv.");
+  prm.declare_entry("Second parameter values", "", List(Double()),
+                    "Comma-separated values (SI units) of the second parameter.");
+  prm.declare_entry("Hold normalized coning", "true", Bool(),
+                    "When the second parameter is Clearance, scale Coning with it so that "
+                    "beta* ro / C0 stays fixed (as Wileman & Green's Table 1 did).");
+  prm.leave_subsection();
+}
+
+namespace
+{
+struct Sweep
+{
+  AngularSealDynamics::SweptRing swept;
+  double from, to;
+  unsigned int n;
+  AngularSealDynamics::Criterion criterion;
+};
+
+/// The stable interval that contains the swept ring's current speed, else the widest one.
+nlohmann::json pick_range(const std::vector<AngularSealDynamics::SpeedInterval> &intervals,
+                          const double current, bool &found, nlohmann::json &limits)
+{
+  found = false;
+  const AngularSealDynamics::SpeedInterval *best = nullptr;
+  for (const auto &i : intervals)
+    if (i.low <= current && current <= i.high)
+      best = &i;
+  if (!best)
+    for (const auto &i : intervals)
+      if (!best || i.high - i.low > best->high - best->low)
+        best = &i;
+  if (!best)
+  {
+    limits = nullptr;
+    return nullptr;
+  }
+  found = true;
+  limits = {best->low_at_search_limit, best->high_at_search_limit};
+  return {best->low, best->high};
+}
+} // namespace
+
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
+                   const FilmCoefficientProvider &finite_element)
+{
+  SealDynamicsInput input;
+  input.parse_parameters(prm);
+  input.finite_element = finite_element;
+  input.validate();
+
+  prm.enter_subsection("Stability");
+  const std::string swept_name = prm.get("Swept speed");
+  Sweep sweep{swept_name == "Rotor speed" ? AngularSealDynamics::SweptRing::rotor
+                                          : AngularSealDynamics::SweptRing::stator,
+              prm.get_double("Sweep from"), prm.get_double("Sweep to"),
+              static_cast<unsigned int>(prm.get_integer("Grid points")),
+              prm.get("Criterion") == "eigenvalues"
+                  ? AngularSealDynamics::Criterion::eigenvalues
+                  : AngularSealDynamics::Criterion::routh_hurwitz};
+  const std::string second = prm.get("Second parameter");
+  const std::string second_values = prm.get("Second parameter values");
+  const bool hold_beta = prm.get_bool("Hold normalized coning");
+  prm.leave_subsection();
+
+  if (!std::isfinite(sweep.from) || !std::isfinite(sweep.to) || !(sweep.to > sweep.from))
+  {
+    std::ostringstream s;
+    s << "Stability: Sweep to (" << sweep.to << " rad/s) must be greater than Sweep from ("
+      << sweep.from << " rad/s)";
+    throw std::runtime_error(s.str());
+  }
+  std::vector<double> values;
+  if (second != "none")
+  {
+    std::istringstream in(second_values);
+    std::string item;
+    while (std::getline(in, item, ','))
+      if (item.find_first_not_of(" \t") != std::string::npos)
+        values.push_back(std::stod(item));
+    if (values.empty())
+      throw std::runtime_error("Stability: Second parameter = " + second +
+                               " needs a list of Second parameter values");
+  }
+
+  const double wr = input.operating.rotor_speed, ws = input.operating.stator_speed;
+  const bool swept_rotor = sweep.swept == AngularSealDynamics::SweptRing::rotor;
+  const double fixed = swept_rotor ? ws : wr, current = swept_rotor ? wr : ws;
+  // Level 2: the FE coefficients at a few speeds of the sweep, interpolated in between.
+  const SweepFilm film = input.sweep_film(sweep.swept, fixed, sweep.from, sweep.to);
+  const AngularSealDynamics dynamics = input.build(film.model);
+
+  nlohmann::json summary;
+  summary["configuration"] = to_string(input.configuration);
+  const FilmCoefficients fc = dynamics.film_coefficients(wr, ws);
+  const bool isotropic_film = fc.tilt_block_is_isotropic(1e-9);
+  if (sweep.criterion == AngularSealDynamics::Criterion::routh_hurwitz && !isotropic_film)
+    throw std::runtime_error("Stability: Criterion = Routh-Hurwitz needs an isotropic film "
+                             "tilt block; use Criterion = eigenvalues");
+  summary["film_model"] = fc.model;
+  summary["film_model_level"] = input.film_model_level();
+  summary["film_coefficients"] = fc.to_json();
+  summary["film_speed_dependence"] = film.description;
+  summary["rotor_speed"] = wr;
+  summary["stator_speed"] = ws;
+  const auto lambda = dynamics.eigenvalues(wr, ws);
+  nlohmann::json ev = nlohmann::json::array(), whirl = nlohmann::json::array(),
+                 zeta = nlohmann::json::array();
+  for (const auto &l : lambda)
+  {
+    ev.push_back({l.real(), l.imag()});
+    whirl.push_back(l.imag());
+    zeta.push_back(std::abs(l) > 0 ? -l.real() / std::abs(l) : 0.0);
+  }
+  summary["eigenvalues"] = ev;
+  summary["whirl_frequencies"] = whirl;
+  summary["damping_ratios"] = zeta;
+  summary["growth_rate"] = lambda.front().real();
+  summary["stable"] = dynamics.is_stable(wr, ws);
+  summary["stable_routh_hurwitz"] =
+      isotropic_film ? nlohmann::json(dynamics.is_stable_routh_hurwitz(wr, ws)) : nullptr;
+
+  summary["swept_speed"] = swept_rotor ? "rotor" : "stator";
+  summary["sweep"] = {sweep.from, sweep.to};
+  summary["criterion"] = sweep.criterion == AngularSealDynamics::Criterion::eigenvalues
+                             ? "eigenvalues"
+                             : "Routh-Hurwitz";
+  const auto intervals = dynamics.stable_speed_intervals(sweep.swept, fixed, sweep.from, sweep.to,
+                                                         sweep.n, sweep.criterion);
+  bool found = false;
+  nlohmann::json limits;
+  summary["stable_range"] = pick_range(intervals, current, found, limits);
+  summary["stable_range_at_search_limit"] = limits;
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto &i : intervals)
+    all.push_back({i.low, i.high});
+  summary["stable_intervals"] = all;
+  if (film.interpolation)
+  {
+    // The interpolation error where it matters: one FE computation midway between the nodes
+    // around each end of the stable range (or around the operating speed without one).
+    std::vector<double> at;
+    if (found)
+      for (unsigned int k = 0; k < 2; ++k)
+        if (!limits[k].get<bool>())
+          at.push_back(summary["stable_range"][k].get<double>());
+    if (at.empty())
+      at.push_back(current);
+    summary["film_speed_dependence"]["interpolation_check"] =
+        film.interpolation->check_report(at, input.geometry.outer_radius);
+  }
+  try
+  {
+    summary["undamped_thresholds"] = dynamics.undamped_threshold_speeds(sweep.swept, fixed);
+  }
+  catch (const std::runtime_error &)
+  {
+    summary["undamped_thresholds"] = nullptr; // film without c = (w1 + w2)/2 d11
+  }
+
+  // growth rate along the swept speed
+  nlohmann::json files = nlohmann::json::array();
+  {
+    const std::string name = "stability_growth_rate.csv";
+    std::ofstream out(output_directory + "/" + name);
+    if (!out)
+      throw std::runtime_error("Stability: cannot write " + output_directory + "/" + name);
+    out << "# growth rate max Re(lambda) (1/s) of the least stable mode against the "
+        << (swept_rotor ? "rotor" : "stator") << " speed (rad/s); other ring at " << fixed
+        << " rad/s\n";
+    out << "swept_speed,rotor_speed,stator_speed,growth_rate,stable\n";
+    out.precision(10);
+    for (unsigned int i = 0; i < sweep.n; ++i)
+    {
+      const double w = sweep.from + (sweep.to - sweep.from) * i / (sweep.n - 1);
+      const double r = swept_rotor ? w : fixed, s = swept_rotor ? fixed : w;
+      out << w << "," << r << "," << s << "," << dynamics.growth_rate(r, s) << ","
+          << dynamics.is_stable(r, s) << "\n";
+    }
+    files.push_back(name);
+  }
+
+  if (second != "none")
+  {
+    const std::string name = "stability_sweep.csv";
+    std::ofstream out(output_directory + "/" + name);
+    if (!out)
+      throw std::runtime_error("Stability: cannot write " + output_directory + "/" + name);
+    out << "# stable range of the " << (swept_rotor ? "rotor" : "stator")
+        << " speed (rad/s) against " << second
+        << " (SI); range = the stable interval containing the operating speed, else the widest; "
+           "nan = no stable speed in the sweep\n";
+    out << "value,stable_low,stable_high,low_at_search_limit,high_at_search_limit,"
+           "stable_intervals\n";
+    out.precision(10);
+    nlohmann::json table = nlohmann::json::array();
+    for (const double v : values)
+    {
+      SealDynamicsInput varied = input;
+      varied.set(second, v, hold_beta);
+      try
+      {
+        varied.validate();
+      }
+      catch (const std::runtime_error &e)
+      {
+        throw std::runtime_error("Stability: Second parameter " + second + " = " +
+                                 std::to_string(v) + ": " + e.what());
+      }
+      const double f = swept_rotor ? varied.operating.stator_speed : varied.operating.rotor_speed;
+      const double c = swept_rotor ? varied.operating.rotor_speed : varied.operating.stator_speed;
+      const AngularSealDynamics d =
+          varied.build(varied.sweep_film(sweep.swept, f, sweep.from, sweep.to).model);
+      const auto iv =
+          d.stable_speed_intervals(sweep.swept, f, sweep.from, sweep.to, sweep.n, sweep.criterion);
+      bool ok = false;
+      nlohmann::json lim;
+      const nlohmann::json range = pick_range(iv, c, ok, lim);
+      out << v << "," << (ok ? range[0].get<double>() : NAN) << ","
+          << (ok ? range[1].get<double>() : NAN) << "," << (ok ? int(lim[0].get<bool>()) : 0) << ","
+          << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
+      table.push_back({{"value", v}, {"stable_range", range}});
+    }
+    summary["second_parameter"] = second;
+    summary["second_parameter_sweep"] = table;
+    files.push_back(name);
+  }
+  summary["files"] = files;
+  return summary;
+}
+} // namespace stability
+} // namespace sealfe

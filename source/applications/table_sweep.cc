@@ -1,0 +1,408 @@
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/io/output.h>
+#include <sealfe/applications/table_sweep.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+using namespace dealii;
+
+std::vector<double> parse_sweep_values(const std::string &text, const std::string &parameter)
+{
+  auto fail = [&](const std::string &why)
+  {
+    throw std::runtime_error("Table: '" + parameter + "' " + why + " (got '" + text +
+                             "'); use a list 'a, b, c' or a range 'start : stop : count'");
+  };
+  auto number = [&](std::string s)
+  {
+    s.erase(0, s.find_first_not_of(" \t"));
+    s.erase(s.find_last_not_of(" \t") + 1);
+    char *end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+      fail("has '" + s + "', which is not a finite number");
+    return v;
+  };
+  std::vector<double> values;
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    return values;
+  if (text.find(':') != std::string::npos)
+  {
+    std::vector<std::string> parts;
+    std::istringstream s(text);
+    std::string p;
+    while (std::getline(s, p, ':'))
+      parts.push_back(p);
+    if (parts.size() != 3)
+      fail("is not a range start : stop : count");
+    const double start = number(parts[0]), stop = number(parts[1]), count = number(parts[2]);
+    if (count < 1 || count != std::floor(count) || count > 100000)
+      fail("needs a whole count of at least 1");
+    if (count == 1 && start != stop)
+      fail("has count 1 but start != stop");
+    const unsigned int n = static_cast<unsigned int>(count);
+    for (unsigned int i = 0; i < n; ++i)
+      values.push_back(n == 1 ? start : start + (stop - start) * i / (n - 1));
+  }
+  else
+  {
+    std::istringstream s(text);
+    std::string p;
+    while (std::getline(s, p, ','))
+      values.push_back(number(p));
+  }
+  std::sort(values.begin(), values.end());
+  for (unsigned int i = 1; i < values.size(); ++i)
+    if (values[i] == values[i - 1])
+      fail("repeats the value " + std::to_string(values[i]));
+  return values;
+}
+
+SweepPlan SweepPlan::make(const OperatingPoint &base, const std::vector<Axis> &axes_in,
+                          const unsigned int n_check)
+{
+  SweepPlan plan;
+  for (const Axis &a : axes_in)
+    if (!a.values.empty())
+      plan.axes.push_back(a);
+  // Grid: nested loops, last axis fastest.
+  std::vector<unsigned int> counter(plan.axes.size(), 0);
+  while (true)
+  {
+    OperatingPoint p = base;
+    for (unsigned int a = 0; a < plan.axes.size(); ++a)
+      p.set(plan.axes[a].name, plan.axes[a].values[counter[a]]);
+    plan.points.push_back(p);
+    int a = static_cast<int>(plan.axes.size()) - 1;
+    for (; a >= 0; --a)
+      if (++counter[a] < plan.axes[a].values.size())
+        break;
+      else
+        counter[a] = 0;
+    if (a < 0)
+      break;
+  }
+  plan.n_grid = plan.points.size();
+  // Held-out points: the centre of a grid cell, cells spread along the diagonal of the grid.
+  bool any_cell = false;
+  for (const Axis &a : plan.axes)
+    any_cell = any_cell || a.values.size() > 1;
+  if (any_cell)
+    for (unsigned int k = 0; k < n_check; ++k)
+    {
+      OperatingPoint p = base;
+      for (const Axis &a : plan.axes)
+      {
+        const unsigned int n = a.values.size();
+        if (n == 1)
+        {
+          p.set(a.name, a.values[0]);
+          continue;
+        }
+        const unsigned int cell =
+            std::min<unsigned int>(n - 2, std::floor((k + 0.5) * (n - 1) / n_check));
+        p.set(a.name, 0.5 * (a.values[cell] + a.values[cell + 1]));
+      }
+      plan.points.push_back(p);
+    }
+  return plan;
+}
+
+namespace table
+{
+namespace
+{
+/// prm entry name and OperatingPoint column of every quantity a table can be swept over.
+const std::vector<std::pair<std::string, std::string>> &sweepable()
+{
+  static const std::vector<std::pair<std::string, std::string>> s = {
+      {"Rotor speed", "rotor_speed"},
+      {"Stator speed", "stator_speed"},
+      {"Clearance", "clearance"},
+      {"Coning", "coning"},
+      {"Tilt", "tilt"},
+      {"Pressure difference", "pressure_difference"},
+      {"Viscosity", "viscosity"}};
+  return s;
+}
+
+/// Shortest text that reads back to the same double (so that every rank count writes the same
+/// file and the reader sees the exact values).
+std::string number(const double v)
+{
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  return std::string(buffer, result.ptr);
+}
+
+std::string describe(const OperatingPoint &p, const SweepPlan &plan)
+{
+  std::ostringstream s;
+  s.precision(6);
+  for (unsigned int a = 0; a < plan.axes.size(); ++a)
+    s << (a ? ", " : "") << plan.axes[a].name << " = " << p.get(plan.axes[a].name);
+  return s.str();
+}
+
+/// One CSV row (no newline) of point i: its result, or NaNs and the failure.
+std::string row(const unsigned int i, const SweepPlan &plan, const CoefficientResult *result,
+                const bool with_errors, const std::string &failure)
+{
+  std::string line = std::to_string(i) + (plan.is_check(i) ? ",check" : ",grid");
+  for (const auto &[name, unit] : OperatingPoint::columns())
+    line += "," + number(plan.points[i].get(name));
+  const auto columns = coefficient_table_format::output_columns(with_errors);
+  if (!result)
+  {
+    for (unsigned int c = 0; c < columns.size(); ++c)
+      line += ",nan";
+    return line + ",failed: " + coefficient_table_format::sanitize(failure);
+  }
+  const FilmLoads &l = result->loads;
+  for (const double v : {l.force_z, l.moment_x, l.moment_y, l.moment_restoring, l.moment_transverse,
+                         l.leakage_inner, l.leakage_outer, l.friction_torque, l.min_film,
+                         l.max_pressure, l.min_pressure, l.cavitated_fraction})
+    line += "," + number(v);
+  for (const auto *m : {&result->coefficients.stiffness, &result->coefficients.damping})
+    for (const auto &r : *m)
+      for (const double v : r)
+        line += "," + number(v);
+  if (with_errors)
+    for (const auto *m : {&result->stiffness_error, &result->damping_error})
+      for (const auto &r : *m)
+        for (const double v : r)
+          line += "," + number(result->has_error_estimate ? v : std::nan(""));
+  return line + "," + std::to_string(result->dofs) + ",ok";
+}
+
+/// Concatenate every rank's text on rank 0 (in rank order).
+std::string gather_text(const std::string &mine, MPI_Comm comm)
+{
+  const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  int size = static_cast<int>(mine.size());
+  std::vector<int> sizes(n), offsets(n, 0);
+  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm);
+  int total = 0;
+  if (root)
+    for (unsigned int r = 0; r < n; ++r)
+    {
+      offsets[r] = total;
+      total += sizes[r];
+    }
+  std::string all(root ? total : 0, '\0');
+  MPI_Gatherv(mine.data(), size, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0,
+              comm);
+  return all;
+}
+} // namespace
+
+void declare_parameters(ParameterHandler &prm)
+{
+  CoefficientSolver::declare_parameters(prm);
+  prm.enter_subsection("Table");
+  struct Entry
+  {
+    std::string name, value, unit;
+  };
+  const std::vector<Entry> entries = {
+      {"Rotor speed", "0 : 4000 : 5", "rad/s"},
+      {"Stator speed", "", "rad/s"},
+      {"Clearance", "0.8e-6, 1e-6, 1.25e-6, 1.6e-6", "m"},
+      {"Coning", "", "rad"},
+      {"Tilt", "", "rad, at the Geometry's Tilt angle"},
+      {"Pressure difference", "", "Pa, po - pi with pi of the Operating conditions"},
+      {"Viscosity", "", "Pa s"}};
+  for (const auto &[name, value, unit] : entries)
+    prm.declare_entry(name, value, Patterns::Anything(),
+                      "Values of " + name + " (" + unit +
+                          "): a list 'a, b, c' or a range 'start : stop : count' (both ends "
+                          "included). Empty: not swept, the Geometry / Operating conditions "
+                          "value is used.");
+  prm.declare_entry("Output file", "coefficients.csv", Patterns::Anything(),
+                    "CSV file (in the Output directory) of the table: one header line naming "
+                    "every column with its unit, one row per operating point.");
+  prm.declare_entry("Held-out points", "2", Patterns::Integer(0, 1000),
+                    "Extra points at the centres of grid cells (role 'check' in the CSV), not "
+                    "used by the interpolation: the interpolation error of the table is "
+                    "reported against them in summary.json.");
+  prm.declare_entry("Interpolation", "cubic", Patterns::Selection("cubic|linear"),
+                    "Interpolation used for the held-out error report (the reader offers both): "
+                    "cubic Lagrange on 4 nodes per axis (O(h^4)) or multilinear (O(h^2)).");
+  prm.leave_subsection();
+}
+
+nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm comm)
+{
+  const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+
+  FilmThickness base_film;
+  OperatingConditions base_conditions;
+  base_film.parse_parameters(prm);
+  base_conditions.parse_parameters(prm);
+  std::vector<SweepPlan::Axis> axes;
+  prm.enter_subsection("Table");
+  for (const auto &[entry, column] : sweepable())
+    axes.push_back({column, parse_sweep_values(prm.get(entry), entry)});
+  const std::string file = prm.get("Output file");
+  const unsigned int n_check = prm.get_integer("Held-out points");
+  const auto interpolation = prm.get("Interpolation") == "linear"
+                                 ? CoefficientTable::Interpolation::linear
+                                 : CoefficientTable::Interpolation::cubic;
+  prm.leave_subsection();
+  if (file.empty() || file.find('/') != std::string::npos)
+    throw std::runtime_error("Table: 'Output file' must be a file name inside the Output "
+                             "directory (got '" +
+                             file + "')");
+
+  const SweepPlan plan =
+      SweepPlan::make(OperatingPoint::of(base_film, base_conditions), axes, n_check);
+  // Every rank solves its own points on its own: one solver per rank.
+  CoefficientSolver solver(MPI_COMM_SELF);
+  solver.parse_parameters(prm);
+  const bool with_errors = solver.reynolds().error_estimate_enabled();
+  if (rank == 0)
+    std::cerr << "sealfe table: " << plan.n_grid << " grid points + "
+              << plan.points.size() - plan.n_grid << " held-out points on " << n_ranks << " rank(s)"
+              << std::endl;
+
+  // Round-robin: the points of a sweep cost about the same.
+  std::string my_rows;
+  double my_time = 0;
+  for (unsigned int i = rank; i < plan.points.size(); i += n_ranks)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    FilmThickness film = base_film;
+    OperatingConditions conditions = base_conditions;
+    plan.points[i].apply(film, conditions);
+    std::string line, failure;
+    try
+    {
+      const CoefficientResult r = solver.compute(film, conditions);
+      line = row(i, plan, &r, with_errors, "");
+    }
+    catch (std::exception &e)
+    {
+      failure = e.what();
+    }
+    catch (...)
+    {
+      failure = "unknown error";
+    }
+    if (line.empty())
+      line = row(i, plan, nullptr, with_errors, failure.empty() ? "unknown error" : failure);
+    my_rows += line + "\n";
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    my_time += seconds;
+    std::ostringstream progress;
+    progress.precision(3);
+    progress << "sealfe table: point " << i + 1 << "/" << plan.points.size()
+             << (plan.is_check(i) ? " (held-out)" : "") << " [rank " << rank << "] "
+             << describe(plan.points[i], plan) << ": "
+             << (failure.empty() ? "ok" : "FAILED: " + coefficient_table_format::sanitize(failure))
+             << " (" << seconds << " s)\n";
+    std::cerr << progress.str() << std::flush;
+  }
+
+  const std::string all_rows = gather_text(my_rows, comm);
+  const double total_time = Utilities::MPI::sum(my_time, comm);
+  const double max_rank_time = Utilities::MPI::max(my_time, comm);
+  nlohmann::json summary;
+  unsigned int grid_failures = 0;
+  if (rank == 0)
+  {
+    // Rows in point order, whatever rank computed them.
+    std::vector<std::pair<unsigned int, std::string>> lines;
+    std::istringstream in(all_rows);
+    std::string line;
+    while (std::getline(in, line))
+      lines.emplace_back(std::stoul(line.substr(0, line.find(','))), line);
+    std::sort(lines.begin(), lines.end());
+    std::string csv = coefficient_table_format::header(with_errors) + "\n";
+    nlohmann::json failures = nlohmann::json::array();
+    for (const auto &[i, l] : lines)
+    {
+      csv += l + "\n";
+      const auto status = l.find(",failed: ");
+      if (status != std::string::npos)
+      {
+        failures.push_back({{"index", i},
+                            {"role", plan.is_check(i) ? "check" : "grid"},
+                            {"message", l.substr(status + 9)}});
+        if (!plan.is_check(i))
+          ++grid_failures;
+      }
+    }
+    output::make_directory(directory);
+    output::write_file_atomically(directory, file, csv);
+
+    summary["table"] = file;
+    summary["grid_points"] = plan.n_grid;
+    summary["held_out_points"] = plan.points.size() - plan.n_grid;
+    summary["failed_points"] = failures.size();
+    summary["failures"] = failures;
+    nlohmann::json ax = nlohmann::json::object();
+    for (const auto &a : plan.axes)
+      ax[a.name] = a.values;
+    summary["axes"] = ax;
+    nlohmann::json columns = nlohmann::json::array();
+    std::istringstream header(coefficient_table_format::header(with_errors));
+    for (std::string c; std::getline(header, c, ',');)
+      columns.push_back(c);
+    summary["columns"] = columns;
+    summary["time_per_point"] = total_time / plan.points.size(); // s, one point on one rank
+    summary["sweep_wall_time"] = max_rank_time;
+
+    // Read the file back (the reader the dynamics module uses) and report the interpolation
+    // error at the held-out points.
+    if (grid_failures < plan.n_grid)
+    {
+      const CoefficientTable table(directory + "/" + file, interpolation);
+      nlohmann::json held = nlohmann::json::array();
+      double worst_k = 0, worst_d = 0;
+      for (const auto &e : table.held_out_errors())
+      {
+        nlohmann::json point = nlohmann::json::object();
+        for (const auto &a : plan.axes)
+          point[a.name] = e.point.get(a.name);
+        held.push_back({{"point", point},
+                        {"stiffness", e.stiffness},
+                        {"damping", e.damping},
+                        {"columns", e.columns}});
+        worst_k = std::max(worst_k, e.stiffness);
+        worst_d = std::max(worst_d, e.damping);
+      }
+      summary["interpolation"] =
+          interpolation == CoefficientTable::Interpolation::linear ? "linear" : "cubic";
+      summary["held_out_error"] = held;
+      summary["max_held_out_error"] = {
+          {"stiffness", worst_k},
+          {"damping", worst_d},
+          {"definition", "max_ij |K~ - K| / max_ij |K| of diag(1, 1/ro, 1/ro) K diag(1, 1/ro, "
+                         "1/ro); the same for D"}};
+    }
+    std::cerr << "sealfe table: wrote " << directory << "/" << file << " (" << plan.points.size()
+              << " rows, " << failures.size() << " failed)" << std::endl;
+  }
+  MPI_Bcast(&grid_failures, 1, MPI_UNSIGNED, 0, comm);
+  if (grid_failures == plan.n_grid)
+    throw std::runtime_error("Table: every grid point failed (see the status column of " +
+                             directory + "/" + file + ")");
+  return summary;
+}
+} // namespace table
+
+} // namespace sealfe

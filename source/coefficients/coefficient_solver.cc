@@ -1,0 +1,479 @@
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/closed_form/green_etsion.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace sealfe
+{
+using namespace dealii;
+
+void CoefficientSettings::declare_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Coefficients");
+  prm.declare_entry(
+      "Method", "perturbation", Patterns::Selection("perturbation|finite difference"),
+      "perturbation: linearise the discrete Reynolds system about the solved pressure and solve "
+      "it once per degree of freedom (z, tilt_x, tilt_y) and per rate, reusing the factorisation "
+      "of the operating-point solve (6 extra linear solves). finite difference: central "
+      "differences of the full nonlinear solve (12 extra solves), to check the perturbation "
+      "method.");
+  prm.declare_entry("Relative step", "1e-4", Patterns::Double(),
+                    "Finite difference only: the steps are this times C0 (axial), C0/ro (tilt), "
+                    "and for the rates these times omega_ref = max(|rotor speed|, |stator speed|, "
+                    "1 rad/s). Truncation error ~ step^2, round-off ~ 1e-13/step: 1e-4 balances "
+                    "them to about 1e-8.");
+  prm.declare_entry("Axial step", "0", Patterns::Double(),
+                    "Finite difference only: axial step (m); 0 means Relative step * C0.");
+  prm.declare_entry("Tilt step", "0", Patterns::Double(),
+                    "Finite difference only: tilt step (rad); 0 means Relative step * C0/ro.");
+  prm.leave_subsection();
+}
+
+void CoefficientSettings::parse_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Coefficients");
+  method =
+      prm.get("Method") == "finite difference" ? Method::finite_difference : Method::perturbation;
+  relative_step = prm.get_double("Relative step");
+  axial_step = prm.get_double("Axial step");
+  tilt_step = prm.get_double("Tilt step");
+  prm.leave_subsection();
+  auto check = [](const double v, const char *name, const bool zero_allowed)
+  {
+    if (!std::isfinite(v) || v < 0 || (!zero_allowed && v == 0))
+    {
+      std::ostringstream s;
+      s << "Coefficients: '" << name << "' must be " << (zero_allowed ? "zero or " : "")
+        << "positive (got " << v << ")";
+      throw std::runtime_error(s.str());
+    }
+  };
+  check(relative_step, "Relative step", false);
+  check(axial_step, "Axial step", true);
+  check(tilt_step, "Tilt step", true);
+  if (relative_step >= 0.5)
+    throw std::runtime_error("Coefficients: 'Relative step' must be well below 1 (got " +
+                             std::to_string(relative_step) + "); 1e-4 is a good value");
+}
+
+CoefficientSettings::Steps CoefficientSettings::steps(const FilmThickness &film,
+                                                      const OperatingConditions &conditions) const
+{
+  Steps s;
+  s.axial = axial_step > 0 ? axial_step : relative_step * film.clearance;
+  s.tilt = tilt_step > 0 ? tilt_step : relative_step * film.clearance / film.outer_radius;
+  const double omega_ref =
+      std::max({std::abs(conditions.rotor_speed), std::abs(conditions.stator_speed), 1.0});
+  s.axial_rate = s.axial * omega_ref;
+  s.tilt_rate = s.tilt * omega_ref;
+  return s;
+}
+
+std::string to_string(const CoefficientSettings::Method method)
+{
+  return method == CoefficientSettings::Method::finite_difference ? "finite difference"
+                                                                  : "perturbation";
+}
+
+namespace
+{
+using Matrix3 = FilmCoefficients::Matrix3;
+
+/// F = (F_z, M_x, M_y) of a set of loads (or of their derivatives).
+std::array<double, 3> generalized_force(const FilmLoads &l)
+{
+  return {{l.force_z, l.moment_x, l.moment_y}};
+}
+
+/// dh/dq_j of the flexible ring's degrees of freedom q = (z, tilt_x, tilt_y): the face moves by
+/// w = z + tilt_x y - tilt_y x (film_thickness.h), and the same functions are d(dh/dt)/dq_dot_j.
+const std::array<std::function<double(double, double)>, 3> &mode_shapes()
+{
+  static const std::array<std::function<double(double, double)>, 3> shapes = {
+      {[](double, double) { return 1.0; }, [](double r, double t) { return r * std::sin(t); },
+       [](double r, double t) { return -r * std::cos(t); }}};
+  return shapes;
+}
+
+/// The film with degree of freedom j (0..2 displacements, 3..5 rates) moved by `step`.
+FilmThickness perturbed(const FilmThickness &film, const unsigned int j, const double step)
+{
+  FilmThickness f = film;
+  switch (j)
+  {
+  case 0:
+    f.axial_offset += step;
+    break;
+  case 1:
+    f.set_tilt_vector(film.tilt_x() + step, film.tilt_y());
+    break;
+  case 2:
+    f.set_tilt_vector(film.tilt_x(), film.tilt_y() + step);
+    break;
+  case 3:
+    f.axial_velocity += step;
+    break;
+  case 4:
+    f.tilt_rate_x += step;
+    break;
+  default:
+    f.tilt_rate_y += step;
+    break;
+  }
+  return f;
+}
+
+/// ReynoldsSolver may offer the linearised loads of several directions in one call (one
+/// right-hand-side assembly and load integration pass for all, one solve each with the same
+/// factorisation): use it when it exists, else one call per direction.
+template <typename Solver, typename = void>
+struct has_batched_linearization : std::false_type
+{
+};
+template <typename Solver>
+struct has_batched_linearization<
+    Solver, std::void_t<decltype(std::declval<const Solver &>().linearized_loads(
+                std::declval<const std::vector<typename Solver::FilmPerturbation> &>()))>>
+    : std::true_type
+{
+};
+
+template <typename Solver>
+std::vector<FilmLoads>
+linearized_loads(const Solver &solver,
+                 const std::vector<typename Solver::FilmPerturbation> &directions)
+{
+  if constexpr (has_batched_linearization<Solver>::value)
+    return solver.linearized_loads(directions);
+  else
+  {
+    std::vector<FilmLoads> loads;
+    for (const auto &d : directions)
+      loads.push_back(solver.linearized_loads(d));
+    return loads;
+  }
+}
+
+double seconds_since(const std::chrono::steady_clock::time_point &start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string linearization_note(const CoefficientSettings::Method method,
+                               const CavitationSettings &cavitation)
+{
+  if (method == CoefficientSettings::Method::finite_difference)
+    return "central differences of the nonlinear solve (the cavitation boundary moves with the "
+           "perturbation)";
+  if (cavitation.model == Cavitation::none)
+    return "full film: exact derivative of the discrete Reynolds system";
+  if (cavitation.model == Cavitation::half_sommerfeld)
+    return "half-Sommerfeld: frozen cavitation boundary, the perturbed pressure counts only "
+           "where p > p_cav; this is the derivative of the clipped loads (the clipped integrand "
+           "is continuous at the boundary), except at quadrature points that sit on p_cav";
+  if (cavitation.model == Cavitation::reynolds)
+    return "Reynolds (Swift-Stieber): linearised at the converged active set, which is frozen "
+           "(the perturbed pressure is zero at the nodes held at p_cav)";
+  if (cavitation.model == Cavitation::jfo)
+    return "JFO: the Jacobian of the converged complementarity system at its cavitated set "
+           "(pressure and liquid fraction perturbed together; the set itself is not moved)";
+  return "linearisation of the solver's cavitation model (ReynoldsSolver::linearized_loads)";
+}
+
+nlohmann::json rows(const Matrix3 &m)
+{
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto &row : m)
+    a.push_back({row[0], row[1], row[2]});
+  return a;
+}
+} // namespace
+
+nlohmann::json CoefficientResult::to_json() const
+{
+  nlohmann::json j = loads.to_json();
+  const nlohmann::json k = coefficients.to_json(); // (items() of a temporary would dangle)
+  for (const auto &[key, value] : k.items())
+    j[key] = value;
+  j["model"] = "finite element";
+  j["coefficient_method"] = to_string(method);
+  j["linearization"] = linearization;
+  if (method == CoefficientSettings::Method::finite_difference)
+    j["finite_difference_steps"] = {{"axial", steps.axial},
+                                    {"tilt", steps.tilt},
+                                    {"axial_rate", steps.axial_rate},
+                                    {"tilt_rate", steps.tilt_rate}};
+  j["dofs"] = dofs;
+  j["polynomial_degree"] = degree;
+  j["units"] = {{"stiffness",
+                 {{"N/m", "N/rad", "N/rad"},
+                  {"N m/m", "N m/rad", "N m/rad"},
+                  {"N m/m", "N m/rad", "N m/rad"}}},
+                {"damping",
+                 {{"N s/m", "N s/rad", "N s/rad"},
+                  {"N m s/m", "N m s/rad", "N m s/rad"},
+                  {"N m s/m", "N m s/rad", "N m s/rad"}}}};
+  if (has_error_estimate)
+  {
+    nlohmann::json e = load_error.to_json();
+    for (const char *k : {"min_film", "max_pressure", "min_pressure", "area"})
+      e.erase(k);
+    e["stiffness"] = rows(stiffness_error);
+    e["damping"] = rows(damping_error);
+    e["method"] = "difference to a 2x coarser mesh / (2^(k+1) - 1)";
+    e["coarse_dofs"] = coarse_dofs;
+    j["error_estimate"] = e;
+  }
+  else
+    j["error_estimate"] = {{"method", "none: disabled or the mesh cannot be coarsened"}};
+  j["stage_wall_time"] = {{"solve", solve_time},
+                          {"coefficients", coefficient_time},
+                          {"error_estimate", error_estimate_time}};
+  // The cost of the coefficient set relative to the solve it linearises (target <= 1.5).
+  j["coefficient_cost_ratio"] = solve_time > 0 ? coefficient_time / solve_time : 0.0;
+  return j;
+}
+
+CoefficientSolver::CoefficientSolver(MPI_Comm comm) : comm(comm), solver(comm) {}
+
+void CoefficientSolver::declare_parameters(ParameterHandler &prm)
+{
+  ReynoldsSolver::declare_parameters(prm);
+  CoefficientSettings::declare_parameters(prm);
+}
+
+void CoefficientSolver::parse_parameters(ParameterHandler &prm)
+{
+  solver.parse_parameters(prm);
+  settings.parse_parameters(prm);
+}
+
+std::pair<FilmLoads, FilmCoefficients>
+CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingConditions &conditions,
+                                   const unsigned int coarsening, double &solve_time,
+                                   double &coefficient_time)
+{
+  FilmCoefficients c;
+  c.level = 2;
+  c.model = "finite element (" + to_string(settings.method) + ")";
+  c.rotor_speed = conditions.rotor_speed;
+  c.stator_speed = conditions.stator_speed;
+  FilmLoads base;
+
+  if (settings.method == CoefficientSettings::Method::perturbation)
+  {
+    auto start = std::chrono::steady_clock::now();
+    base = solver.run(film, conditions, coarsening);
+    solve_time = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    // Columns of K: dh = dh/dq_j; columns of D: d(dh/dt) = dh/dq_j.
+    std::vector<ReynoldsSolver::FilmPerturbation> directions(6);
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      directions[j].dh = mode_shapes()[j];
+      directions[3 + j].dh_dt = mode_shapes()[j];
+    }
+    const std::vector<FilmLoads> derivatives = linearized_loads(solver, directions);
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      const auto dF = generalized_force(derivatives[j]);
+      const auto dF_rate = generalized_force(derivatives[3 + j]);
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        c.stiffness[i][j] = -dF[i];
+        c.damping[i][j] = -dF_rate[i];
+      }
+    }
+    coefficient_time = seconds_since(start);
+  }
+  else
+  {
+    // The mesh is graded by C0 and coning only (ReynoldsSolver::setup_system), so every
+    // perturbed solve uses the same mesh and the differences carry no remeshing noise.
+    const CoefficientSettings::Steps s = settings.steps(film, conditions);
+    const std::array<double, 6> step = {
+        {s.axial, s.tilt, s.tilt, s.axial_rate, s.tilt_rate, s.tilt_rate}};
+    auto start = std::chrono::steady_clock::now();
+    for (unsigned int j = 0; j < 6; ++j)
+    {
+      const auto plus =
+          generalized_force(solver.run(perturbed(film, j, step[j]), conditions, coarsening));
+      const auto minus =
+          generalized_force(solver.run(perturbed(film, j, -step[j]), conditions, coarsening));
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        const double derivative = (plus[i] - minus[i]) / (2 * step[j]);
+        (j < 3 ? c.stiffness[i][j] : c.damping[i][j - 3]) = -derivative;
+      }
+    }
+    coefficient_time = seconds_since(start);
+    // The operating point last, so that the solver is left holding its solution.
+    start = std::chrono::steady_clock::now();
+    base = solver.run(film, conditions, coarsening);
+    solve_time = seconds_since(start);
+  }
+  return {base, c};
+}
+
+FilmCoefficients CoefficientSolver::coefficients(const FilmThickness &film,
+                                                 const OperatingConditions &conditions,
+                                                 const unsigned int coarsening)
+{
+  double t_solve, t_coefficients;
+  return compute_on_mesh(film, conditions, coarsening, t_solve, t_coefficients).second;
+}
+
+CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
+                                             const OperatingConditions &conditions)
+{
+  CoefficientResult r;
+  r.method = settings.method;
+  r.linearization = linearization_note(settings.method, solver.cavitation);
+  if (settings.method == CoefficientSettings::Method::finite_difference)
+    r.steps = settings.steps(film, conditions);
+
+  // The coarse mesh first, so that the solver ends holding the fine solution.
+  FilmLoads coarse_loads;
+  FilmCoefficients coarse;
+  r.has_error_estimate = solver.error_estimate_enabled() && solver.mesh().can_coarsen(1);
+  if (r.has_error_estimate)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    double t_solve, t_coefficients;
+    std::tie(coarse_loads, coarse) = compute_on_mesh(film, conditions, 1, t_solve, t_coefficients);
+    r.coarse_dofs = solver.n_dofs();
+    r.error_estimate_time = seconds_since(start);
+  }
+
+  std::tie(r.loads, r.coefficients) =
+      compute_on_mesh(film, conditions, 0, r.solve_time, r.coefficient_time);
+  r.dofs = solver.n_dofs();
+  r.degree = solver.degree();
+
+  if (r.has_error_estimate)
+  {
+    // Coefficients and loads of degree-k elements converge at least like h^(k+1).
+    const double factor = 1.0 / (std::pow(2.0, r.degree + 1) - 1);
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        r.stiffness_error[i][j] =
+            factor * std::abs(r.coefficients.stiffness[i][j] - coarse.stiffness[i][j]);
+        r.damping_error[i][j] =
+            factor * std::abs(r.coefficients.damping[i][j] - coarse.damping[i][j]);
+      }
+    auto e = [&](const double fine, const double c) { return factor * std::abs(fine - c); };
+    const FilmLoads &f = r.loads, &c = coarse_loads;
+    r.load_error.force_z = e(f.force_z, c.force_z);
+    r.load_error.moment_x = e(f.moment_x, c.moment_x);
+    r.load_error.moment_y = e(f.moment_y, c.moment_y);
+    r.load_error.moment_restoring = e(f.moment_restoring, c.moment_restoring);
+    r.load_error.moment_transverse = e(f.moment_transverse, c.moment_transverse);
+    r.load_error.leakage_inner = e(f.leakage_inner, c.leakage_inner);
+    r.load_error.leakage_outer = e(f.leakage_outer, c.leakage_outer);
+    r.load_error.friction_torque = e(f.friction_torque, c.friction_torque);
+    r.load_error.cavitated_fraction = e(f.cavitated_fraction, c.cavitated_fraction);
+  }
+  return r;
+}
+
+std::function<FilmCoefficients(double, double)>
+CoefficientSolver::film_model(const FilmThickness &film, const OperatingConditions &conditions)
+{
+  auto cache = std::make_shared<std::map<std::pair<double, double>, FilmCoefficients>>();
+  return [this, film, conditions, cache](const double rotor_speed, const double stator_speed)
+  {
+    const auto key = std::make_pair(rotor_speed, stator_speed);
+    const auto hit = cache->find(key);
+    if (hit != cache->end())
+      return hit->second;
+    OperatingConditions c = conditions;
+    c.rotor_speed = rotor_speed;
+    c.stator_speed = stator_speed;
+    const FilmCoefficients k = coefficients(film, c);
+    cache->emplace(key, k);
+    return k;
+  };
+}
+
+// ------------------------------------------------------------------------------------------------
+// sealfe coefficients
+
+namespace coefficients
+{
+void declare_parameters(ParameterHandler &prm)
+{
+  CoefficientSolver::declare_parameters(prm);
+}
+
+nlohmann::json run(ParameterHandler &prm, const std::string &, MPI_Comm comm)
+{
+  FilmThickness film;
+  OperatingConditions conditions;
+  film.parse_parameters(prm);
+  conditions.parse_parameters(prm);
+  film.validate();
+  conditions.validate();
+  CoefficientSolver solver(comm);
+  solver.parse_parameters(prm);
+
+  const CoefficientResult r = solver.compute(film, conditions);
+  nlohmann::json summary = r.to_json();
+
+  // Level 0 on the same seal, so that a user sees what the closed form would have said (it
+  // describes the untilted, unwaved coned face in full film only).
+  try
+  {
+    const GreenEtsionCoefficients narrow(film, conditions);
+    nlohmann::json n =
+        narrow.coefficients(conditions.rotor_speed, conditions.stator_speed).to_json();
+    n["note"] = "Green & Etsion narrow-seal closed form (level 0): untilted coned face, full film, "
+                "error O((1 - ri/ro)^2)";
+    summary["narrow_seal_reference"] = n;
+  }
+  catch (std::exception &e)
+  {
+    summary["narrow_seal_reference"] = {{"note", std::string("not available: ") + e.what()}};
+  }
+
+  if (Utilities::MPI::this_mpi_process(comm) == 0)
+  {
+    auto print = [](const char *name, const Matrix3 &m, const char *unit)
+    {
+      std::cout << "  " << name << " (" << unit << ")\n";
+      for (const auto &row : m)
+        std::cout << "    " << std::setw(14) << row[0] << std::setw(14) << row[1] << std::setw(14)
+                  << row[2] << "\n";
+    };
+    std::cout << std::setprecision(6) << "sealfe coefficients (finite element, "
+              << to_string(r.method) << ", " << r.dofs << " dofs, degree " << r.degree << ")\n"
+              << "  force_z            " << r.loads.force_z << " N\n"
+              << "  moment_x, moment_y " << r.loads.moment_x << ", " << r.loads.moment_y
+              << " N m\n";
+    print("stiffness K = -dF/dq, q = (z, tilt_x, tilt_y)", r.coefficients.stiffness,
+          "N/m, N/rad; N m/m, N m/rad");
+    print("damping D = -dF/dq_dot", r.coefficients.damping, "N s/m, N s/rad; N m s/m, N m s/rad");
+    std::cout << "  angular k, c, d    " << r.coefficients.tilt_direct_stiffness() << ", "
+              << r.coefficients.tilt_cross_stiffness() << ", "
+              << r.coefficients.tilt_direct_damping() << "\n"
+              << "  time: solve " << r.solve_time << " s, coefficients " << r.coefficient_time
+              << " s, error estimate " << r.error_estimate_time << " s\n";
+  }
+  return summary;
+}
+} // namespace coefficients
+
+} // namespace sealfe

@@ -1,0 +1,184 @@
+#include <sealfe/film/annulus_mesh.h>
+
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+using namespace dealii;
+
+void AnnulusMesh::declare_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Discretization");
+  prm.declare_entry("Radial cells", "8", Patterns::Integer(1),
+                    "Cells across the dam (r direction) of the built-in annulus mesh.");
+  prm.declare_entry("Circumferential cells", "128", Patterns::Integer(3),
+                    "Cells around the annulus (theta direction) of the built-in mesh.");
+  prm.declare_entry("Global refinements", "0", Patterns::Integer(0, 12),
+                    "Uniform refinements of the coarse mesh (each halves the cells in r, theta).");
+  prm.declare_entry("Radial grading", "true", Patterns::Bool(),
+                    "Grade the built-in mesh radially: nodes equidistribute int dr/h0^1.5 of the "
+                    "axisymmetric film h0(r), so cells are small where the film is thin (the "
+                    "pressure gradient scales like 1/h^3). false: uniform radial cells.");
+  prm.declare_entry("Mesh file", "", Patterns::Anything(),
+                    "Optional gmsh .msh file of the annulus (replaces the built-in mesh). Its "
+                    "boundary must be the two circles r = ri and r = ro of the Geometry section; "
+                    "the boundary is classified by radius, physical tags are not needed.");
+  prm.leave_subsection();
+}
+
+void AnnulusMesh::parse_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Discretization");
+  radial_cells = prm.get_integer("Radial cells");
+  circumferential_cells = prm.get_integer("Circumferential cells");
+  global_refinements = prm.get_integer("Global refinements");
+  mesh_file = prm.get("Mesh file");
+  radial_grading = prm.get_bool("Radial grading");
+  prm.leave_subsection();
+}
+
+bool AnnulusMesh::can_coarsen(const unsigned int coarsening) const
+{
+  if (coarsening <= global_refinements)
+    return true;
+  if (!mesh_file.empty())
+    return false;
+  const unsigned int extra = coarsening - global_refinements;
+  const unsigned int f = 1u << extra;
+  return radial_cells % f == 0 && circumferential_cells % f == 0 && circumferential_cells / f >= 3;
+}
+
+std::vector<double> AnnulusMesh::radial_nodes(const unsigned int nr, const double ri,
+                                              const double ro) const
+{
+  std::vector<double> nodes(nr + 1);
+  for (unsigned int i = 0; i <= nr; ++i)
+    nodes[i] = ri + (ro - ri) * i / nr;
+  const double h_in = grading_clearance, h_out = grading_clearance + grading_coning * (ro - ri);
+  if (!radial_grading || !(h_in > 0) || !(h_out > 0) || std::abs(h_out / h_in - 1) < 1e-3)
+    return nodes;
+  // W(r) = int_ri^r h0(s)^-a ds = (h_in^(1-a) - h0(r)^(1-a)) / (b (a - 1)); invert W at equal
+  // fractions of W(ro).
+  const double b = grading_coning, a = grading_exponent;
+  auto W = [&](double h) { return (std::pow(h_in, 1 - a) - std::pow(h, 1 - a)) / (b * (a - 1)); };
+  const double total = W(h_out);
+  for (unsigned int i = 1; i < nr; ++i)
+  {
+    const double w = total * i / nr;
+    const double h = std::pow(std::pow(h_in, 1 - a) - w * b * (a - 1), 1 / (1 - a));
+    nodes[i] = ri + (h - h_in) / b;
+  }
+  return nodes;
+}
+
+namespace
+{
+/// Classify each boundary face of a mesh by its radius; throw if it is not on r = ri or r = ro.
+void set_boundary_ids(Triangulation<2> &tria, const double ri, const double ro,
+                      const std::string &where)
+{
+  const double tol = 1e-6 * ro;
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary())
+      {
+        const auto face = cell->face(f);
+        const double r0 = face->vertex(0).norm(), r1 = face->vertex(1).norm();
+        if (std::abs(r0 - ri) < tol && std::abs(r1 - ri) < tol)
+          face->set_boundary_id(AnnulusMesh::inner_boundary);
+        else if (std::abs(r0 - ro) < tol && std::abs(r1 - ro) < tol)
+          face->set_boundary_id(AnnulusMesh::outer_boundary);
+        else
+        {
+          std::ostringstream s;
+          s << where << " is not an annulus ri = " << ri << " m .. ro = " << ro
+            << " m: a boundary edge runs from radius " << r0 << " m to " << r1 << " m";
+          throw std::runtime_error(s.str());
+        }
+      }
+}
+} // namespace
+
+void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const double ri,
+                         const double ro, const unsigned int coarsening) const
+{
+  if (!can_coarsen(coarsening))
+    throw std::runtime_error("Discretization: cannot build a mesh coarser than the one asked for");
+  unsigned int refinements = global_refinements;
+  unsigned int nr = radial_cells, nt = circumferential_cells;
+  if (coarsening <= global_refinements)
+    refinements -= coarsening;
+  else
+  {
+    refinements = 0;
+    nr >>= (coarsening - global_refinements);
+    nt >>= (coarsening - global_refinements);
+  }
+
+  Triangulation<2> coarse;
+  if (mesh_file.empty())
+  {
+    // Vertices on a polar grid; cells (i, j) span [r_i, r_i+1] x [theta_j, theta_j+1], wrapping
+    // around in theta. Lexicographic vertex order (r fastest) keeps the cells right-handed.
+    std::vector<Point<2>> vertices;
+    const std::vector<double> radii = radial_nodes(nr, ri, ro);
+    for (unsigned int j = 0; j < nt; ++j)
+      for (unsigned int i = 0; i <= nr; ++i)
+      {
+        const double r = radii[i], t = 2 * M_PI * j / nt;
+        vertices.emplace_back(r * std::cos(t), r * std::sin(t));
+      }
+    auto index = [&](unsigned int i, unsigned int j) { return (j % nt) * (nr + 1) + i; };
+    std::vector<CellData<2>> cells;
+    for (unsigned int j = 0; j < nt; ++j)
+      for (unsigned int i = 0; i < nr; ++i)
+      {
+        CellData<2> c;
+        c.vertices = {index(i, j), index(i + 1, j), index(i, j + 1), index(i + 1, j + 1)};
+        cells.push_back(c);
+      }
+    coarse.create_triangulation(vertices, cells, SubCellData());
+    set_boundary_ids(coarse, ri, ro, "built-in mesh");
+  }
+  else
+  {
+    std::ifstream in(mesh_file);
+    if (!in)
+      throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
+                               "' is missing or unreadable");
+    GridIn<2> grid_in(coarse);
+    try
+    {
+      grid_in.read_msh(in);
+    }
+    catch (std::exception &e)
+    {
+      throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
+                               "' is not a readable gmsh mesh");
+    }
+    set_boundary_ids(coarse, ri, ro, "Discretization: Mesh file '" + mesh_file + "'");
+    // Every boundary face must have been classified; both circles must be present.
+    bool has_inner = false, has_outer = false;
+    for (const auto &face : coarse.active_face_iterators())
+      if (face->at_boundary())
+        (face->boundary_id() == inner_boundary ? has_inner : has_outer) = true;
+    if (!has_inner || !has_outer)
+      throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
+                               "' does not have both circles r = ri and r = ro on its boundary");
+  }
+
+  tria.copy_triangulation(coarse);
+  tria.set_all_manifold_ids(0);
+  tria.set_manifold(0, PolarManifold<2>(Point<2>()));
+  tria.refine_global(refinements);
+}
+
+} // namespace sealfe

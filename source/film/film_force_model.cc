@@ -1,0 +1,73 @@
+#include <sealfe/film/film_force_model.h>
+
+#include <stdexcept>
+
+namespace sealfe
+{
+std::string to_string(const FilmLevel level)
+{
+  switch (level)
+  {
+  case FilmLevel::closed_form:
+    return "closed form";
+  case FilmLevel::table:
+    return "table";
+  case FilmLevel::finite_element:
+    return "finite element";
+  }
+  return "unknown";
+}
+
+FilmLevel film_level_from_string(const std::string &name)
+{
+  for (const FilmLevel level :
+       {FilmLevel::closed_form, FilmLevel::table, FilmLevel::finite_element})
+    if (name == to_string(level))
+      return level;
+  throw std::runtime_error("unknown film model \"" + name + "\" (expected " + film_level_pattern() +
+                           ")");
+}
+
+std::string film_level_pattern()
+{
+  return "closed form|table|finite element";
+}
+
+FilmState FilmState::from(const FilmThickness &film, const OperatingConditions &conditions)
+{
+  FilmState s;
+  s.axial_offset = film.axial_offset;
+  s.tilt_x = film.tilt_x();
+  s.tilt_y = film.tilt_y();
+  s.axial_velocity = film.axial_velocity;
+  s.tilt_rate_x = film.tilt_rate_x;
+  s.tilt_rate_y = film.tilt_rate_y;
+  s.coning = film.coning;
+  s.rotor_speed = conditions.rotor_speed;
+  s.stator_speed = conditions.stator_speed;
+  s.inner_pressure = conditions.inner_pressure;
+  s.outer_pressure = conditions.outer_pressure;
+  return s;
+}
+
+FilmThickness FilmState::apply(FilmThickness base) const
+{
+  base.axial_offset = axial_offset;
+  base.set_tilt_vector(tilt_x, tilt_y);
+  base.axial_velocity = axial_velocity;
+  base.tilt_rate_x = tilt_rate_x;
+  base.tilt_rate_y = tilt_rate_y;
+  base.coning = coning;
+  return base;
+}
+
+OperatingConditions FilmState::apply(OperatingConditions base) const
+{
+  base.rotor_speed = rotor_speed;
+  base.stator_speed = stator_speed;
+  base.inner_pressure = inner_pressure;
+  base.outer_pressure = outer_pressure;
+  return base;
+}
+
+} // namespace sealfe

@@ -1,0 +1,147 @@
+#include <sealfe/film/film_thickness.h>
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+void FilmThickness::declare_parameters(dealii::ParameterHandler &prm)
+{
+  using dealii::Patterns::Double;
+  prm.enter_subsection("Geometry");
+  prm.declare_entry("Inner radius", "0.0355", Double(0), "Inner radius ri of the sealing dam (m).");
+  prm.declare_entry("Outer radius", "0.0408", Double(0), "Outer radius ro of the sealing dam (m).");
+  prm.declare_entry("Clearance", "1e-6", Double(),
+                    "Centreline clearance C0 (m): the film at r = ri on the tilt's neutral line.");
+  prm.declare_entry("Coning", "1e-3", Double(),
+                    "Coning beta (rad): h grows by beta*(r - ri); positive opens outward.");
+  prm.declare_entry("Tilt", "0", Double(0), "Relative tilt gamma of the faces (rad).");
+  prm.declare_entry("Tilt angle", "0", Double(),
+                    "Angle psi (rad) at which the tilt makes the film thickest.");
+  prm.declare_entry("Wave amplitude", "0", Double(), "Circumferential waviness amplitude A_w (m).");
+  prm.declare_entry("Wave number", "0", Double(0), "Number of waves n_w per revolution.");
+  prm.declare_entry("Wave phase", "0", Double(),
+                    "Angle theta_w (rad) of a waviness crest: A_w cos(n_w (theta - theta_w)).");
+  prm.declare_entry(
+      "Axial offset", "0", Double(),
+      "Axial displacement z (m) of the flexible ring from the set point (adds to h).");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Squeeze motion");
+  prm.declare_entry("Axial velocity", "0", Double(),
+                    "Axial velocity dz/dt (m/s) of the flexible ring (opens the film if > 0).");
+  prm.declare_entry("Tilt rate x", "0", Double(),
+                    "Rate (rad/s) of the flexible ring's tilt about the x axis (w = tilt_x y).");
+  prm.declare_entry("Tilt rate y", "0", Double(),
+                    "Rate (rad/s) of the flexible ring's tilt about the y axis (w = -tilt_y x).");
+  prm.leave_subsection();
+}
+
+void FilmThickness::parse_parameters(dealii::ParameterHandler &prm)
+{
+  prm.enter_subsection("Geometry");
+  inner_radius = prm.get_double("Inner radius");
+  outer_radius = prm.get_double("Outer radius");
+  clearance = prm.get_double("Clearance");
+  coning = prm.get_double("Coning");
+  tilt = prm.get_double("Tilt");
+  tilt_angle = prm.get_double("Tilt angle");
+  wave_amplitude = prm.get_double("Wave amplitude");
+  wave_number = prm.get_double("Wave number");
+  wave_phase = prm.get_double("Wave phase");
+  axial_offset = prm.get_double("Axial offset");
+  prm.leave_subsection();
+  prm.enter_subsection("Squeeze motion");
+  axial_velocity = prm.get_double("Axial velocity");
+  tilt_rate_x = prm.get_double("Tilt rate x");
+  tilt_rate_y = prm.get_double("Tilt rate y");
+  prm.leave_subsection();
+}
+
+void FilmThickness::set_tilt_vector(const double tx, const double ty)
+{
+  tilt = std::hypot(tx, ty);
+  tilt_angle = (tilt > 0) ? std::atan2(tx, -ty) : 0.0;
+}
+
+namespace
+{
+template <typename Compare>
+FilmThickness::Extremum scan(const FilmThickness &h, Compare better)
+{
+  // h is linear in r at fixed theta, so the extremes lie on r = ri or r = ro; scan theta finely
+  // and polish with golden-section search around the best sample.
+  const unsigned int n = 4096;
+  FilmThickness::Extremum best{h.value(h.inner_radius, 0), h.inner_radius, 0};
+  for (const double r : {h.inner_radius, h.outer_radius})
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const double t = 2 * M_PI * i / n;
+      const double v = h.value(r, t);
+      if (better(v, best.value))
+        best = {v, r, t};
+    }
+  double a = best.theta - 2 * M_PI / n, b = best.theta + 2 * M_PI / n;
+  const double g = 0.5 * (std::sqrt(5.0) - 1);
+  for (unsigned int it = 0; it < 60; ++it)
+  {
+    const double c = b - g * (b - a), d = a + g * (b - a);
+    if (better(h.value(best.r, c), h.value(best.r, d)))
+      b = d;
+    else
+      a = c;
+  }
+  const double t = 0.5 * (a + b);
+  if (better(h.value(best.r, t), best.value))
+    best = {h.value(best.r, t), best.r, t};
+  best.theta = std::fmod(best.theta + 4 * M_PI, 2 * M_PI);
+  return best;
+}
+} // namespace
+
+FilmThickness::Extremum FilmThickness::minimum() const
+{
+  return scan(*this, [](double a, double b) { return a < b; });
+}
+
+FilmThickness::Extremum FilmThickness::maximum() const
+{
+  return scan(*this, [](double a, double b) { return a > b; });
+}
+
+void FilmThickness::validate(const bool allow_touch_down) const
+{
+  auto fail = [](const std::string &what) { throw std::runtime_error(what); };
+  for (double v : {inner_radius, outer_radius, clearance, coning, tilt, tilt_angle, wave_amplitude,
+                   wave_number, axial_offset})
+    if (!std::isfinite(v))
+      fail("Geometry: a parameter is not a finite number");
+  if (!(inner_radius > 0))
+    fail("Geometry: Inner radius must be positive (got " + std::to_string(inner_radius) + " m)");
+  if (!(outer_radius > inner_radius))
+  {
+    std::ostringstream s;
+    s << "Geometry: Inner radius (" << inner_radius << " m) must be smaller than Outer radius ("
+      << outer_radius << " m)";
+    fail(s.str());
+  }
+  if (!(clearance > 0))
+  {
+    std::ostringstream s;
+    s << "Geometry: Clearance must be positive (got " << clearance << " m)";
+    fail(s.str());
+  }
+  const Extremum m = minimum();
+  if (!(m.value > 0) && !allow_touch_down)
+  {
+    std::ostringstream s;
+    s << "Geometry: the film touches down: h = " << m.value << " m (overlap " << -m.value
+      << " m) at r = " << m.r << " m, theta = " << m.theta
+      << " rad; reduce tilt/waviness or raise the clearance (or model rough faces in contact: "
+         "Roughness/Model = patir-cheng with Contact/Model = gw-ceb)";
+    fail(s.str());
+  }
+}
+
+} // namespace sealfe

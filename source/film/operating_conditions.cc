@@ -1,0 +1,52 @@
+#include <sealfe/film/operating_conditions.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+void OperatingConditions::declare_parameters(dealii::ParameterHandler &prm)
+{
+  using dealii::Patterns::Double;
+  prm.enter_subsection("Operating conditions");
+  prm.declare_entry("Inner pressure", "0", Double(), "Pressure pi (Pa) on r = ri.");
+  prm.declare_entry("Outer pressure", "4e5", Double(), "Pressure po (Pa) on r = ro.");
+  prm.declare_entry("Viscosity", "1.2e-3", Double(), "Dynamic viscosity mu (Pa s).");
+  prm.declare_entry("Rotor speed", "1000", Double(),
+                    "Angular speed (rad/s, positive in +theta) of the rotor face; the film shape "
+                    "is fixed in the frame of the solve.");
+  prm.declare_entry("Stator speed", "0", Double(),
+                    "Angular speed (rad/s) of the other face (non-zero for two rotating rings, "
+                    "FMRR).");
+  prm.declare_entry("Reference pressure", "0", Double(),
+                    "p_ref (Pa) subtracted from the pressure in the force and moments.");
+  prm.leave_subsection();
+}
+
+void OperatingConditions::parse_parameters(dealii::ParameterHandler &prm)
+{
+  prm.enter_subsection("Operating conditions");
+  inner_pressure = prm.get_double("Inner pressure");
+  outer_pressure = prm.get_double("Outer pressure");
+  viscosity = prm.get_double("Viscosity");
+  rotor_speed = prm.get_double("Rotor speed");
+  stator_speed = prm.get_double("Stator speed");
+  reference_pressure = prm.get_double("Reference pressure");
+  prm.leave_subsection();
+}
+
+void OperatingConditions::validate() const
+{
+  for (double v : {inner_pressure, outer_pressure, viscosity, rotor_speed, stator_speed})
+    if (!std::isfinite(v))
+      throw std::runtime_error("Operating conditions: a parameter is not a finite number");
+  if (!(viscosity > 0))
+  {
+    std::ostringstream s;
+    s << "Operating conditions: Viscosity must be positive (got " << viscosity << " Pa s)";
+    throw std::runtime_error(s.str());
+  }
+}
+
+} // namespace sealfe
