@@ -5,7 +5,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 
-packages=(cmake g++ make libdeal.ii-dev libgtest-dev gmsh libvtk9-dev nlohmann-json3-dev
+packages=(cmake g++ make libdeal.ii-dev libboost-dev libgtest-dev gmsh libvtk9-dev nlohmann-json3-dev
           libbenchmark-dev mpi-default-bin mpi-default-dev python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

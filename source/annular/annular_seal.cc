@@ -1,5 +1,7 @@
 // Annular seal model of Fleming (NASA TM X-73654), its optimisation and the `sealfe annular` run.
 #include <sealfe/annular/annular_seal.h>
+#include <sealfe/numerics/minimisation.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -157,74 +159,9 @@ double objective_value(const DimensionlessCoefficients &c, Objective objective)
   return objective == Objective::stiffness ? c.stiffness : c.stiffness / c.leakage;
 }
 
-/// Maximises fn on [a, b]: the best of n_grid equally spaced points, then golden section in the
-/// bracket of its neighbours (which also converges onto an end point when the maximum is there).
-template <typename Function>
-std::pair<double, double> maximise(Function &&fn, double a, double b, unsigned int n_grid,
-                                   double tolerance)
-{
-  unsigned int best = 0;
-  double best_value = -std::numeric_limits<double>::infinity();
-  const auto x_at = [&](unsigned int i) { return a + (b - a) * i / (n_grid - 1); };
-  for (unsigned int i = 0; i < n_grid; ++i)
-  {
-    const double v = fn(x_at(i));
-    if (v > best_value)
-    {
-      best_value = v;
-      best = i;
-    }
-  }
-  double lo = x_at(best == 0 ? 0 : best - 1), hi = x_at(std::min(best + 1, n_grid - 1));
-  const double r = 0.5 * (std::sqrt(5.0) - 1);
-  double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
-  double f1 = fn(x1), f2 = fn(x2);
-  while (hi - lo > tolerance)
-  {
-    if (f1 >= f2)
-    {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - r * (hi - lo);
-      f1 = fn(x1);
-    }
-    else
-    {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + r * (hi - lo);
-      f2 = fn(x2);
-    }
-  }
-  // the end points themselves (golden section never evaluates them)
-  std::pair<double, double> result = f1 >= f2 ? std::make_pair(x1, f1) : std::make_pair(x2, f2);
-  for (const double x : {lo, hi})
-  {
-    const double v = fn(x);
-    if (v > result.second)
-      result = {x, v};
-  }
-  if (best_value > result.second)
-    result = {x_at(best), best_value};
-  return result;
-}
-
 double parse_number(const std::string &entry, const std::string &text)
 {
-  try
-  {
-    std::size_t used = 0;
-    const double x = std::stod(text, &used);
-    if (used != text.size() || !std::isfinite(x))
-      throw std::invalid_argument("");
-    return x;
-  }
-  catch (const std::exception &)
-  {
-    fail(entry + " is not a finite number (got '" + text + "')");
-  }
+  return numerics::parse_finite_number(text, "Annular seal: " + entry);
 }
 
 std::string quoted(const std::string &path)
@@ -422,26 +359,30 @@ Optimum optimise(const DimensionlessSeal &seal, Objective objective,
   const double H_max = bounds.clearance_ratio_max;
   const unsigned int n_H =
       std::max(41u, static_cast<unsigned int>(std::ceil((H_max - 1) / 0.1)) + 1);
-  const double tolerance = 1e-9;
+  // The design objective may have several local maxima over the bounds: sample, then polish.
+  const auto maximise = [](auto &&fn, double a, double b, unsigned int n_samples)
+  {
+    const numerics::Minimum m =
+        numerics::sampled_maximum(fn, a, b, n_samples, numerics::Domain::interval);
+    return std::make_pair(m.x, m.value);
+  };
   const auto value = [&](double H, double gamma)
   { return objective_value(dimensionless_coefficients(with(seal, H, gamma)), objective); };
 
   Optimum opt;
   if (seal.geometry == Geometry::tapered)
   {
-    opt.clearance_ratio =
-        maximise([&](double H) { return value(H, 1); }, 1, H_max, n_H, tolerance).first;
+    opt.clearance_ratio = maximise([&](double H) { return value(H, 1); }, 1, H_max, n_H).first;
     opt.step_ratio = 1;
   }
   else
   {
     const double g_min = bounds.step_ratio_min, g_max = bounds.step_ratio_max;
     const auto best_H = [&](double gamma)
-    { return maximise([&](double H) { return value(H, gamma); }, 1, H_max, n_H, tolerance); };
-    opt.step_ratio = g_max > g_min ? maximise([&](double g) { return best_H(g).second; }, g_min,
-                                              g_max, 41, tolerance)
-                                         .first
-                                   : g_max;
+    { return maximise([&](double H) { return value(H, gamma); }, 1, H_max, n_H); };
+    opt.step_ratio =
+        g_max > g_min ? maximise([&](double g) { return best_H(g).second; }, g_min, g_max, 41).first
+                      : g_max;
     opt.clearance_ratio = best_H(opt.step_ratio).first;
     opt.step_ratio_at_bound = g_max - opt.step_ratio < 1e-6;
   }

@@ -1,4 +1,5 @@
 #include <sealfe/closed_form/narrow_seal.h>
+#include <sealfe/numerics/minimisation.h>
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -363,37 +364,17 @@ FilmLoads NarrowSealModel::loads(const NarrowSealQuadrature &quadrature) const
   out.cavitated_fraction = cavitated_area / area;
   out.min_film = film_.minimum().value;
 
-  // Extreme pressures: exact on each radial line, sampled in theta and polished by golden search.
+  // Extreme pressures: exact on each radial line, sampled in theta and polished.
   {
     const unsigned int n = quadrature.angular_points;
-    auto lo = [&](const double t) { return line(t).extremes().first; };
-    auto hi = [&](const double t) { return -line(t).extremes().second; };
-    double best[2] = {lo(0), hi(0)}, at[2] = {0, 0};
-    for (unsigned int k = 1; k < n; ++k)
-    {
-      const double t = 2 * M_PI * k / n;
-      const double v[2] = {lo(t), hi(t)};
-      for (int j = 0; j < 2; ++j)
-        if (v[j] < best[j])
-        {
-          best[j] = v[j];
-          at[j] = t;
-        }
-    }
-    const double g = 0.5 * (std::sqrt(5.0) - 1);
-    for (int j = 0; j < 2; ++j)
-    {
-      auto f = [&](const double t) { return j == 0 ? lo(t) : hi(t); };
-      double a = at[j] - 2 * M_PI / n, b = at[j] + 2 * M_PI / n;
-      for (unsigned int it = 0; it < 80; ++it)
-      {
-        const double c1 = b - g * (b - a), c2 = a + g * (b - a);
-        (f(c1) < f(c2) ? b : a) = (f(c1) < f(c2) ? c2 : c1);
-      }
-      best[j] = std::min(best[j], f(0.5 * (a + b)));
-    }
-    out.min_pressure = hs ? std::max(best[0], pcav) : best[0];
-    out.max_pressure = -best[1];
+    auto lowest = [&](const double t) { return line(t).extremes().first; };
+    auto highest = [&](const double t) { return line(t).extremes().second; };
+    const double p_min =
+        numerics::sampled_minimum(lowest, 0, 2 * M_PI, n, numerics::Domain::periodic).value;
+    const double p_max =
+        numerics::sampled_maximum(highest, 0, 2 * M_PI, n, numerics::Domain::periodic).value;
+    out.min_pressure = hs ? std::max(p_min, pcav) : p_min;
+    out.max_pressure = p_max;
   }
   return out;
 }

@@ -1,4 +1,5 @@
 #include <sealfe/film/film_thickness.h>
+#include <sealfe/numerics/minimisation.h>
 
 #include <algorithm>
 #include <sstream>
@@ -67,47 +68,35 @@ void FilmThickness::set_tilt_vector(const double tx, const double ty)
 
 namespace
 {
-template <typename Compare>
-FilmThickness::Extremum scan(const FilmThickness &h, Compare better)
+/// Extremum of h over the dam: h is linear in r at fixed theta, so the extremes lie on r = ri or
+/// r = ro; on each circle the extremum in theta is sampled finely and polished.
+FilmThickness::Extremum extremum(const FilmThickness &h, const bool maximum)
 {
-  // h is linear in r at fixed theta, so the extremes lie on r = ri or r = ro; scan theta finely
-  // and polish with golden-section search around the best sample.
-  const unsigned int n = 4096;
-  FilmThickness::Extremum best{h.value(h.inner_radius, 0), h.inner_radius, 0};
+  FilmThickness::Extremum best{0, 0, 0};
+  bool first = true;
   for (const double r : {h.inner_radius, h.outer_radius})
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const double t = 2 * M_PI * i / n;
-      const double v = h.value(r, t);
-      if (better(v, best.value))
-        best = {v, r, t};
-    }
-  double a = best.theta - 2 * M_PI / n, b = best.theta + 2 * M_PI / n;
-  const double g = 0.5 * (std::sqrt(5.0) - 1);
-  for (unsigned int it = 0; it < 60; ++it)
   {
-    const double c = b - g * (b - a), d = a + g * (b - a);
-    if (better(h.value(best.r, c), h.value(best.r, d)))
-      b = d;
-    else
-      a = c;
+    const auto on_circle = [&](const double theta) { return h.value(r, theta); };
+    const numerics::Minimum m =
+        maximum
+            ? numerics::sampled_maximum(on_circle, 0, 2 * M_PI, 4096, numerics::Domain::periodic)
+            : numerics::sampled_minimum(on_circle, 0, 2 * M_PI, 4096, numerics::Domain::periodic);
+    if (first || (maximum ? m.value > best.value : m.value < best.value))
+      best = {m.value, r, std::fmod(m.x + 4 * M_PI, 2 * M_PI)};
+    first = false;
   }
-  const double t = 0.5 * (a + b);
-  if (better(h.value(best.r, t), best.value))
-    best = {h.value(best.r, t), best.r, t};
-  best.theta = std::fmod(best.theta + 4 * M_PI, 2 * M_PI);
   return best;
 }
 } // namespace
 
 FilmThickness::Extremum FilmThickness::minimum() const
 {
-  return scan(*this, [](double a, double b) { return a < b; });
+  return extremum(*this, false);
 }
 
 FilmThickness::Extremum FilmThickness::maximum() const
 {
-  return scan(*this, [](double a, double b) { return a > b; });
+  return extremum(*this, true);
 }
 
 void FilmThickness::validate(const bool allow_touch_down) const

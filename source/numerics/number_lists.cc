@@ -1,0 +1,78 @@
+#include <sealfe/numerics/number_lists.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace sealfe::numerics
+{
+double parse_finite_number(const std::string &text, const std::string &entry)
+{
+  const std::string s = dealii::Utilities::trim(text);
+  char *end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+    throw std::runtime_error(entry + " is not a finite number (got '" + text + "')");
+  return v;
+}
+
+std::vector<double> parse_number_list(const std::string &text, const std::string &entry)
+{
+  const auto fail = [&](const std::string &why)
+  {
+    throw std::runtime_error(entry + " " + why + " (got '" + text +
+                             "'); use a list 'a, b, c' or a range 'start : stop : count'");
+  };
+  const auto number = [&](const std::string &s)
+  {
+    try
+    {
+      return parse_finite_number(s, "");
+    }
+    catch (const std::runtime_error &)
+    {
+      fail("has '" + dealii::Utilities::trim(s) + "', which is not a finite number");
+    }
+    return 0.0;
+  };
+
+  std::vector<double> values;
+  if (dealii::Utilities::trim(text).empty())
+    return values;
+  if (text.find(':') != std::string::npos)
+  {
+    // split_string_list drops a trailing empty item: count the separators instead.
+    if (std::count(text.begin(), text.end(), ':') != 2)
+      fail("is not a range start : stop : count");
+    const std::vector<std::string> parts = dealii::Utilities::split_string_list(text, ':');
+    if (parts.size() != 3)
+      fail("is not a range start : stop : count");
+    const double start = number(parts[0]), stop = number(parts[1]), count = number(parts[2]);
+    if (count < 1 || count != std::floor(count) || count > 100000)
+      fail("needs a whole count of at least 1");
+    if (count == 1 && start != stop)
+      fail("has count 1 but start != stop");
+    const unsigned int n = static_cast<unsigned int>(count);
+    for (unsigned int i = 0; i < n; ++i)
+      values.push_back(n == 1 ? start : start + (stop - start) * i / (n - 1));
+  }
+  else
+  {
+    const auto n_items = std::count(text.begin(), text.end(), ',') + 1;
+    const std::vector<std::string> items = dealii::Utilities::split_string_list(text, ',');
+    if (static_cast<long>(items.size()) != n_items)
+      fail("has an empty item");
+    for (const std::string &item : items)
+      values.push_back(number(item));
+  }
+  std::sort(values.begin(), values.end());
+  for (unsigned int i = 1; i < values.size(); ++i)
+    if (values[i] == values[i - 1])
+      fail("repeats the value " + std::to_string(values[i]));
+  return values;
+}
+
+} // namespace sealfe::numerics
