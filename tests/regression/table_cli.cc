@@ -1,9 +1,9 @@
 // `sealfe coefficients` and `sealfe table` through the command line: the summary.json contract,
 // the CSV layout (header with units, one row per point), a failing point reported in its row
-// while the rest of the table is kept, the same file on 1 and 2 MPI ranks, the held-out error of
-// an FE table falling with grid refinement, and bad input refused with one line.
-#include <sealfe/coefficients/coefficient_table.h>
+// while the rest of the table is kept, the same file on 1 and 2 MPI ranks, and the held-out error
+// of an FE table falling with grid refinement. Bad input: tests/input/table_cli_input.cc.
 #include <sealfe/applications/table_sweep.h>
+#include <sealfe/coefficients/coefficient_table.h>
 
 #include <gtest/gtest.h>
 
@@ -212,27 +212,6 @@ TEST(TableCli, HeldOutErrorOfAnFETableFallsAtTheInterpolantsOrder)
     std::cout << "held-out stiffness error " << errors[i] << ", observed order " << rate << "\n";
     EXPECT_NEAR(rate, 2.0, 0.3);
   }
-}
-
-TEST(TableCli, BadInputIsRefusedWithOneLine)
-{
-  auto refused = [](const std::string &command, const std::string &body, const std::string &what)
-  {
-    const fs::path d = work_dir("bad");
-    const Result r = run(d, command, body);
-    EXPECT_NE(r.status, 0);
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
-  };
-  refused("table", "subsection Table\n  set Rotor speed = 1 : 2\nend\n", "'Rotor speed'");
-  refused("table", "subsection Table\n  set Clearance = 1e-6, abc\nend\n", "'Clearance'");
-  refused("table", "subsection Table\n  set Coning = 1e-3 : 2e-3 : 2.5\nend\n", "'Coning'");
-  refused("table", "subsection Table\n  set Output file = ../x.csv\nend\n", "'Output file'");
-  refused("coefficients", "subsection Coefficients\n  set Relative step = -1\nend\n",
-          "'Relative step'");
-  refused("coefficients", "subsection Coefficients\n  set Method = secant\nend\n", "Method");
-  refused("coefficients", "subsection Geometry\n  set Clearance = 0\nend\n", "Clearance");
 }
 
 TEST(TableSweep, ListsAndRanges)
