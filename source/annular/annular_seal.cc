@@ -1,5 +1,6 @@
 // Annular seal model of Fleming (NASA TM X-73654), its optimisation and the `sealfe annular` run.
 #include <sealfe/annular/annular_seal.h>
+#include <sealfe/io/python_plot.h>
 #include <sealfe/numerics/minimisation.h>
 #include <sealfe/numerics/number_lists.h>
 
@@ -162,34 +163,6 @@ double objective_value(const DimensionlessCoefficients &c, Objective objective)
 double parse_number(const std::string &entry, const std::string &text)
 {
   return numerics::parse_finite_number(text, "Annular seal: " + entry);
-}
-
-std::string quoted(const std::string &path)
-{
-  std::string q = "'";
-  for (const char c : path)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-/// scripts/plot_annular.py next to the sources: $SEALFE_SOURCE_DIR, then relative to the
-/// executable (build trees live in the repository), then the working directory.
-std::string find_plot_script()
-{
-  namespace fs = std::filesystem;
-  std::vector<fs::path> candidates;
-  if (const char *dir = std::getenv("SEALFE_SOURCE_DIR"))
-    candidates.push_back(fs::path(dir) / "scripts" / "plot_annular.py");
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    for (fs::path p = exe.parent_path(); !p.empty() && p != p.root_path(); p = p.parent_path())
-      candidates.push_back(p / "scripts" / "plot_annular.py");
-  candidates.push_back(fs::current_path(ec) / "scripts" / "plot_annular.py");
-  for (const auto &c : candidates)
-    if (fs::exists(c, ec))
-      return c.string();
-  return "";
 }
 
 struct SweepRow
@@ -726,29 +699,14 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     }
     sweep_file = sweep_name;
     const fs::path png = out / "annular_lambda_sweep.png";
-    const std::string script = find_plot_script();
-    const std::string args = " " + quoted(csv.string()) + " " + quoted(png.string());
-    plot_command = "python3 " + (script.empty() ? "scripts/plot_annular.py" : script) + " " +
-                   csv.string() + " " + png.string();
-    bool plotted = false;
-    if (!script.empty())
-      for (const std::string python : {"python3", "/usr/bin/python3"})
-      {
-        const std::string cmd = python + " " + quoted(script) + args + " > " +
-                                quoted((out / "annular_plot.log").string()) + " 2>&1";
-        std::error_code ec;
-        if (std::system(cmd.c_str()) == 0 && fs::exists(png, ec))
-        {
-          plotted = true;
-          break;
-        }
-      }
-    if (plotted)
+    const PlotResult plot =
+        run_plot_script("plot_annular.py", {csv.string(), png.string()}, png.string());
+    plot_command = plot.command;
+    if (plot.made)
       plot_file = png.filename().string();
     else
-      std::cout
-          << "sealfe annular: no plot made (needs python3 with matplotlib); to make it run\n  "
-          << plot_command.get<std::string>() << std::endl;
+      std::cerr << "sealfe annular: " << plot.note << "; to make it run\n  " << plot.command
+                << std::endl;
   }
 
   const bool stepped = seal.geometry == Geometry::stepped;

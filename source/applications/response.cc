@@ -1,9 +1,13 @@
 #include <sealfe/applications/response.h>
 #include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/io/python_plot.h>
+
+#include <iostream>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,58 +39,6 @@ void declare_parameters(dealii::ParameterHandler &prm)
 
 namespace
 {
-bool file_exists(const std::string &path)
-{
-  return std::ifstream(path).good();
-}
-
-std::string quote(const std::string &s)
-{
-  std::string q = "'";
-  for (const char c : s)
-    q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-/// Runs the plot script; returns the PNG name or an empty string (and why, in note).
-std::string plot(const std::string &python_setting, const std::string &script_setting,
-                 const std::string &dir, std::string &note)
-{
-  std::string script = script_setting;
-  if (script.empty())
-  {
-    // source/response.cc -> <source tree>/scripts/plot_response.py
-    std::string here = __FILE__;
-    const auto slash = here.find_last_of('/');
-    const std::string source_dir = (slash == std::string::npos) ? "." : here.substr(0, slash);
-    script = source_dir + "/../scripts/plot_response.py";
-  }
-  if (!file_exists(script))
-  {
-    note = "plot skipped: " + script + " not found";
-    return "";
-  }
-  std::vector<std::string> candidates;
-  if (!python_setting.empty())
-    candidates.push_back(python_setting);
-  else
-    candidates = {"/usr/bin/python3", "python3"};
-  for (const auto &py : candidates)
-  {
-    const std::string probe = quote(py) + " -c 'import matplotlib' > /dev/null 2>&1";
-    if (std::system(probe.c_str()) != 0)
-      continue;
-    const std::string cmd = quote(py) + " " + quote(script) + " " + quote(dir + "/response.csv") +
-                            " " + quote(dir + "/response.png") + " > /dev/null 2>&1";
-    if (std::system(cmd.c_str()) == 0 && file_exists(dir + "/response.png"))
-      return "response.png";
-    note = "plot failed: " + cmd;
-    return "";
-  }
-  note = "plot skipped: no python3 with matplotlib";
-  return "";
-}
-
 /// Contiguous runs of grid speeds where flag holds, as [first, last] pairs.
 nlohmann::json runs(const std::vector<double> &speeds, const std::vector<bool> &flag)
 {
@@ -198,8 +150,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   summary["contact"] = min_margin < 0;
   summary["contact_speed_ranges"] = runs(speeds, contact);
   summary["unstable_speed_ranges"] = runs(speeds, unstable);
-  // forward synchronous critical speed of the rotor ring on its own support (Varney & Green (2017): the
-  // shaft): sqrt(k_s / (I_t - I_p)); none for a thin rotor (I_t <= I_p)
+  // forward synchronous critical speed of the rotor ring on its own support (Varney & Green (2017):
+  // the shaft): sqrt(k_s / (I_t - I_p)); none for a thin rotor (I_t <= I_p)
   const RingProperties &rotor = input.rotor;
   summary["rotor_critical_speed"] =
       (dynamics.rotor_is_flexible() && rotor.transverse_inertia > rotor.polar_inertia)
@@ -210,15 +162,20 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   summary["plot"] = nullptr;
   if (want_plot)
   {
-    std::string note;
-    const std::string png = plot(python, script, output_directory, note);
-    if (!png.empty())
+    const PlotResult plot =
+        run_plot_script("plot_response.py",
+                        {output_directory + "/response.csv", output_directory + "/response.png"},
+                        output_directory + "/response.png", python, script);
+    if (plot.made)
     {
-      files.push_back(png);
-      summary["plot"] = png;
+      files.push_back("response.png");
+      summary["plot"] = "response.png";
     }
     else
-      summary["plot_note"] = note;
+    {
+      summary["plot_note"] = plot.note;
+      std::cerr << "sealfe response: " << plot.note << std::endl;
+    }
   }
   summary["files"] = files;
   return summary;
