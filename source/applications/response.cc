@@ -1,5 +1,5 @@
 #include <sealfe/applications/response.h>
-#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/dynamics/seal_dynamics_input.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -182,7 +182,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   const FilmCoefficients fc =
       dynamics.film_coefficients(input.operating.rotor_speed, input.operating.stator_speed);
   summary["film_model"] = fc.model;
-  summary["film_model_level"] = input.film_model_level();
+  summary["film_model_level"] = static_cast<int>(input.film_level);
   summary["film_coefficients"] = fc.to_json();
   summary["film_speed_dependence"] = film.description;
   if (film.interpolation)
@@ -198,8 +198,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   summary["contact"] = min_margin < 0;
   summary["contact_speed_ranges"] = runs(speeds, contact);
   summary["unstable_speed_ranges"] = runs(speeds, unstable);
-  // forward synchronous critical speed of the rotor ring on its own support (Varney & Green (2017): the
-  // shaft): sqrt(k_s / (I_t - I_p)); none for a thin rotor (I_t <= I_p)
+  // forward synchronous critical speed of the rotor ring on its own support (Varney & Green (2017):
+  // the shaft): sqrt(k_s / (I_t - I_p)); none for a thin rotor (I_t <= I_p)
   const RingProperties &rotor = input.rotor;
   summary["rotor_critical_speed"] =
       (dynamics.rotor_is_flexible() && rotor.transverse_inertia > rotor.polar_inertia)
