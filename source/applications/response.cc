@@ -1,8 +1,6 @@
 #include <sealfe/applications/response.h>
-#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/dynamics/seal_dynamics_input.h>
 #include <sealfe/io/python_plot.h>
-
-#include <iostream>
 
 #include <cmath>
 #include <cstdlib>
@@ -134,7 +132,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   const FilmCoefficients fc =
       dynamics.film_coefficients(input.operating.rotor_speed, input.operating.stator_speed);
   summary["film_model"] = fc.model;
-  summary["film_model_level"] = input.film_model_level();
+  summary["film_model_level"] = static_cast<int>(input.film_level);
   summary["film_coefficients"] = fc.to_json();
   summary["film_speed_dependence"] = film.description;
   if (film.interpolation)

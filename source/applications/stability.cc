@@ -1,5 +1,5 @@
-#include <sealfe/dynamics/seal_dynamics.h>
 #include <sealfe/applications/stability.h>
+#include <sealfe/dynamics/seal_dynamics_input.h>
 
 #include <cmath>
 #include <fstream>
@@ -132,7 +132,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     throw std::runtime_error("Stability: Criterion = Routh-Hurwitz needs an isotropic film "
                              "tilt block; use Criterion = eigenvalues");
   summary["film_model"] = fc.model;
-  summary["film_model_level"] = input.film_model_level();
+  summary["film_model_level"] = static_cast<int>(input.film_level);
   summary["film_coefficients"] = fc.to_json();
   summary["film_speed_dependence"] = film.description;
   summary["rotor_speed"] = wr;

@@ -1,4 +1,5 @@
 #include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/numerics/lagrange_interpolation.h>
 
 #include <algorithm>
 #include <cmath>
@@ -494,31 +495,14 @@ void CoefficientTable::axis_weights(const unsigned int axis, const double x,
                                     std::vector<unsigned int> &nodes,
                                     std::vector<double> &weights) const
 {
-  const std::vector<double> &v = axis_nodes[axis];
-  const unsigned int n = v.size();
-  // Interval k with v[k] <= x <= v[k+1].
-  unsigned int k = std::upper_bound(v.begin(), v.end(), x) - v.begin();
-  k = std::min(std::max(k, 1u), n - 1) - 1;
+  // Multilinear: the 2 nodes of the interval; cubic: Lagrange on the 4 nodes around it (fewer
+  // nodes on the axis lower the degree).
+  const LagrangeStencil s =
+      lagrange_stencil(axis_nodes[axis], x, method == Interpolation::linear ? 2 : 4);
   nodes.clear();
-  if (method == Interpolation::linear || n == 2)
-  {
-    const double t = (x - v[k]) / (v[k + 1] - v[k]);
-    nodes = {k, k + 1};
-    weights = {1 - t, t};
-    return;
-  }
-  // Cubic (or quadratic with 3 nodes) Lagrange on the nodes around the interval; near the ends
-  // the stencil shifts inwards, keeping the order.
-  const unsigned int width = std::min(4u, n);
-  const int first = std::clamp(static_cast<int>(k) - 1, 0, static_cast<int>(n - width));
-  weights.assign(width, 1.0);
-  for (unsigned int m = 0; m < width; ++m)
-  {
-    nodes.push_back(first + m);
-    for (unsigned int l = 0; l < width; ++l)
-      if (l != m)
-        weights[m] *= (x - v[first + l]) / (v[first + m] - v[first + l]);
-  }
+  for (unsigned int m = 0; m < s.weights.size(); ++m)
+    nodes.push_back(s.first + m);
+  weights = s.weights;
 }
 
 double CoefficientTable::interpolate(const unsigned int column, const std::vector<double> &x) const

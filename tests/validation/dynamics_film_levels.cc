@@ -1,13 +1,13 @@
 // The linear dynamics fed by the three film levels of doc/reynolds.md, Levels (issue 6): the stable
-// omega2 range of the Wileman & Green reference seal (Wileman & Green, Table 1 reference row, ri/ro =
-// 0.8) with Green & Etsion's closed forms (level 0), with finite-element coefficients (level 2)
+// omega2 range of the Wileman & Green reference seal (Wileman & Green, Table 1 reference row, ri/ro
+// = 0.8) with Green & Etsion's closed forms (level 0), with finite-element coefficients (level 2)
 // and with a coefficient table read back from CSV (level 1); the same through the command line.
-#include <sealfe/coefficients/coefficient_solver.h>
-#include <sealfe/coefficients/coefficient_table.h>
-#include <sealfe/closed_form/green_etsion.h>
-#include <sealfe/dynamics/seal_dynamics.h>
 #include <sealfe/applications/stability.h>
 #include <sealfe/applications/table_sweep.h>
+#include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/dynamics/seal_dynamics.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -36,8 +36,8 @@ const double omega1 = -2000;                        // rad/s, ring 1 (the "rotor
 const double sweep_from = -40000, sweep_to = 40000; // omega2, as tests/validation/wileman_green
 const unsigned int grid_points = 801;
 
-/// The reference seal of Wileman & Green (Table 1 reference row): ring 1 = rotor ring at omega1, ring 2
-/// = stator ring (swept omega2); c2 = I2/J2.
+/// The reference seal of Wileman & Green (Table 1 reference row): ring 1 = rotor ring at omega1,
+/// ring 2 = stator ring (swept omega2); c2 = I2/J2.
 SealDynamicsInput reference_seal(const double c2)
 {
   SealDynamicsInput in;
@@ -142,7 +142,7 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
 
   // FE coefficients at the operating point on the two meshes.
   SealDynamicsInput fe_seal = seal0;
-  fe_seal.film_model = "finite element";
+  fe_seal.film_level = FilmLevel::finite_element;
   fe_seal.finite_element = finite_element(coarse);
   const Tilt t2 = tilt(fe_seal.film()(omega1, 0));
   SealDynamicsInput fine_seal = fe_seal;
@@ -174,7 +174,7 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
   {
     SealDynamicsInput level0 = reference_seal(c2);
     SealDynamicsInput level2 = level0, level2_fine = level0;
-    level2.film_model = level2_fine.film_model = "finite element";
+    level2.film_level = level2_fine.film_level = FilmLevel::finite_element;
     unsigned int solves = 0;
     level2.finite_element = finite_element(coarse, &solves);
     level2_fine.finite_element = finite_element(fine);
@@ -224,8 +224,8 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
     // Mesh convergence: the threshold moves between the meshes by no more than the coefficients
     // do. Its sensitivity to a relative change of k11 or d11 is below 1: Table 1's pressure rows
     // (k11 proportional to po - pi, d11 fixed) give d ln(omega) / d ln(k11) = 0.26 to 0.46, and
-    // d11 enters the thresholds only through the damping of the whirl, less than k11 (Wileman & Green
-    // Eq. 17, the threshold without support damping, does not contain d11 at all). The mesh
+    // d11 enters the thresholds only through the damping of the whirl, less than k11 (Wileman &
+    // Green Eq. 17, the threshold without support damping, does not contain d11 at all). The mesh
     // error must also be a small fraction of the level-0 / level-2 difference.
     EXPECT_LT(mesh, std::max(mesh_k, mesh_d) + 1e-9) << "c2 = " << c2;
     EXPECT_LT(mesh, 0.1 * diff) << "c2 = " << c2;
@@ -240,7 +240,7 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
   // of 41 speeds keeps it to ~200 computations) gives the interpolated film's thresholds.
   {
     SealDynamicsInput every = reference_seal(0.5), nodes = every;
-    every.film_model = nodes.film_model = "finite element";
+    every.film_level = nodes.film_level = FilmLevel::finite_element;
     unsigned int n_every = 0;
     every.finite_element = finite_element(coarse, &n_every);
     every.film_speed_nodes = 0;
@@ -319,9 +319,9 @@ TEST(DynamicsFilmLevels, TableThresholdMatchesFiniteElementToInterpolationError)
   const std::string csv = make_table(dir);
 
   SealDynamicsInput level1 = reference_seal(0.5), level2 = level1;
-  level1.film_model = "table";
+  level1.film_level = FilmLevel::table;
   level1.table_file = csv;
-  level2.film_model = "finite element";
+  level2.film_level = FilmLevel::finite_element;
   level2.finite_element = finite_element(coarse);
   const Tilt t1 = tilt(level1.film()(omega1, 0)), t2 = tilt(level2.film()(omega1, 0));
   const double ek = relative(t1.k, t2.k), ed = relative(t1.d, t2.d);
@@ -411,7 +411,7 @@ TEST(DynamicsFilmLevels, CommandLineStabilityWithFiniteElementFilm)
   EXPECT_LT(check["max_damping_error"].get<double>(), 1e-9);
   // the same range as the library route on the same mesh
   SealDynamicsInput level2 = reference_seal(0.5);
-  level2.film_model = "finite element";
+  level2.film_level = FilmLevel::finite_element;
   level2.finite_element = finite_element(coarse);
   const Range r2 = stable_range(level2);
   ASSERT_TRUE(s["stable_range"].is_array());
@@ -450,7 +450,8 @@ TEST(DynamicsFilmLevels, CommandLineStabilityWithFiniteElementFilm)
   EXPECT_TRUE(s0["film_speed_dependence"].contains("method"));
 }
 
-// `sealfe response` with Film model = finite element (Varney & Green (2017)'s default seal, a short sweep).
+// `sealfe response` with Film model = finite element (Varney & Green (2017)'s default seal, a short
+// sweep).
 TEST(DynamicsFilmLevels, CommandLineResponseWithFiniteElementFilm)
 {
   const fs::path d = work_dir("response");

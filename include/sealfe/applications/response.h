@@ -2,7 +2,7 @@
 // static and dynamic misalignments over a speed range (tilts, relative tilt, contact margin).
 #pragma once
 
-#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/dynamics/film_levels.h>
 
 #include <deal.II/base/parameter_handler.h>
 

@@ -2,7 +2,7 @@
 // a flexible rotor): eigenvalues, Routh-Hurwitz verdict and the stable range of one ring's speed.
 #pragma once
 
-#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/dynamics/film_levels.h>
 
 #include <deal.II/base/parameter_handler.h>
 
