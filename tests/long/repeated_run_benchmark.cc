@@ -46,8 +46,7 @@ TEST(RepeatedRunBenchmark, TimePerRunOnOneGeometry)
     }
     std::sort(times.begin(), times.end());
     std::cout << (model == Cavitation::jfo ? "jfo " : "none") << " dofs " << solver.n_dofs()
-              << "  time per run: median " << times[n / 2] << " s, minimum " << times[0]
-              << " s\n";
+              << "  time per run: median " << times[n / 2] << " s, minimum " << times[0] << " s\n";
     EXPECT_TRUE(std::isfinite(sum));
   }
 }
