@@ -1,15 +1,16 @@
 #include <sealfe/annular/annular_seal.h>
 #include <sealfe/applications/application.h>
-#include <sealfe/coefficients/coefficient_solver.h>
-#include <sealfe/film/film_thickness.h>
-#include <sealfe/closed_form/narrow_seal.h>
-#include <sealfe/film/operating_conditions.h>
-#include <sealfe/io/output.h>
 #include <sealfe/applications/response.h>
-#include <sealfe/film/reynolds_solver.h>
-#include <sealfe/dynamics/seal_dynamics.h>
 #include <sealfe/applications/stability.h>
 #include <sealfe/applications/table_sweep.h>
+#include <sealfe/closed_form/narrow_seal.h>
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/film/film_settings.h>
+#include <sealfe/film/film_thickness.h>
+#include <sealfe/film/operating_conditions.h>
+#include <sealfe/film/reynolds_solver.h>
+#include <sealfe/io/output.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
@@ -310,16 +311,17 @@ void declare_parameters(ParameterHandler &prm)
   prm.declare_entry("Write fields", "true", Patterns::Bool(),
                     "Write pressure, film thickness and volume flux as VTU/PVD (FE model).");
   prm.leave_subsection();
-  ReynoldsSolver::declare_parameters(prm);
+  FilmSettings::declare_solver_parameters(prm); // Geometry, Operating conditions: declare_common
   NarrowSealQuadrature::declare_parameters(prm);
 }
 
 nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm comm)
 {
-  FilmThickness film;
-  OperatingConditions conditions;
-  film.parse_parameters(prm);
-  conditions.parse_parameters(prm);
+  // Everything the film solvers need, parsed once.
+  FilmSettings settings;
+  settings.parse_parameters(prm);
+  const FilmThickness &film = settings.geometry;
+  const OperatingConditions &conditions = settings.conditions;
   conditions.validate(); // the film is validated by the model (touch-down may be allowed)
   prm.enter_subsection("Film model");
   const std::string model = prm.get("Model");
@@ -332,8 +334,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   nlohmann::json summary;
   if (model == "narrow seal")
   {
-    CavitationSettings cavitation;
-    cavitation.parse_parameters(prm);
+    const CavitationSettings &cavitation = settings.cavitation;
     NarrowSealQuadrature quadrature;
     quadrature.parse_parameters(prm);
     Timer t;
@@ -357,10 +358,9 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
     return summary;
   }
 
-  ReynoldsSolver solver(comm);
-  solver.parse_parameters(prm);
+  ReynoldsSolver solver(settings, comm);
   // Inputs are checked before any mesh file is read or output is touched.
-  const FilmLoads loads = solver.run(film, conditions);
+  const FilmLoads loads = solver.run();
   summary = loads.to_json();
   summary["model"] = "finite element";
   summary["dofs"] = solver.n_dofs();
@@ -390,9 +390,9 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   nlohmann::json estimate;
   if (solver.error_estimate_enabled() && solver.mesh().can_coarsen(1))
   {
-    ReynoldsSolver coarse(comm);
-    coarse.parse_parameters(prm);
-    const FilmLoads c = coarse.run(film, conditions, 1);
+    // A copy of the whole settings, on the mesh twice as coarse.
+    ReynoldsSolver coarse(settings, comm);
+    const FilmLoads c = coarse.run(1);
     const FilmLoads e = estimate_load_errors(loads, c, solver.degree());
     estimate = {{"force_z", e.force_z},
                 {"moment_x", e.moment_x},

@@ -1,6 +1,6 @@
+#include <sealfe/applications/table_sweep.h>
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/io/output.h>
-#include <sealfe/applications/table_sweep.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -123,7 +123,8 @@ namespace table
 {
 namespace
 {
-/// prm entry name and OperatingPoint column of every quantity a table can be swept over.
+/// prm entry name (FilmSettings::set) and OperatingPoint column of every quantity a table can be
+/// swept over.
 const std::vector<std::pair<std::string, std::string>> &sweepable()
 {
   static const std::vector<std::pair<std::string, std::string>> s = {
@@ -248,10 +249,10 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
 
-  FilmThickness base_film;
-  OperatingConditions base_conditions;
-  base_film.parse_parameters(prm);
-  base_conditions.parse_parameters(prm);
+  FilmSettings base;
+  base.parse_parameters(prm);
+  CoefficientSettings coefficient_settings;
+  coefficient_settings.parse_parameters(prm);
   std::vector<SweepPlan::Axis> axes;
   prm.enter_subsection("Table");
   for (const auto &[entry, column] : sweepable())
@@ -268,11 +269,11 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
                              file + "')");
 
   const SweepPlan plan =
-      SweepPlan::make(OperatingPoint::of(base_film, base_conditions), axes, n_check);
-  // Every rank solves its own points on its own: one solver per rank.
-  CoefficientSolver solver(MPI_COMM_SELF);
-  solver.parse_parameters(prm);
-  const bool with_errors = solver.reynolds().error_estimate_enabled();
+      SweepPlan::make(OperatingPoint::of(base.geometry, base.conditions), axes, n_check);
+  // Every rank solves its own points on its own: one solver per rank (its mesh is reused while
+  // the swept quantities leave the discretisation unchanged).
+  CoefficientSolver solver(base, coefficient_settings, MPI_COMM_SELF);
+  const bool with_errors = base.estimate_error;
   if (rank == 0)
     std::cerr << "sealfe table: " << plan.n_grid << " grid points + "
               << plan.points.size() - plan.n_grid << " held-out points on " << n_ranks << " rank(s)"
@@ -284,13 +285,14 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   for (unsigned int i = rank; i < plan.points.size(); i += n_ranks)
   {
     const auto start = std::chrono::steady_clock::now();
-    FilmThickness film = base_film;
-    OperatingConditions conditions = base_conditions;
-    plan.points[i].apply(film, conditions);
+    // The point's film problem: the swept quantities set by their prm names.
+    FilmSettings point = base;
+    for (const auto &[entry, column] : sweepable())
+      point.set(entry, plan.points[i].get(column));
     std::string line, failure;
     try
     {
-      const CoefficientResult r = solver.compute(film, conditions);
+      const CoefficientResult r = solver.compute(point.geometry, point.conditions);
       line = row(i, plan, &r, with_errors, "");
     }
     catch (std::exception &e)

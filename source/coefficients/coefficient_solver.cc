@@ -1,5 +1,5 @@
-#include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/coefficients/coefficient_solver.h>
 
 #include <algorithm>
 #include <array>
@@ -233,7 +233,7 @@ nlohmann::json CoefficientResult::to_json() const
       e.erase(k);
     e["stiffness"] = rows(stiffness_error);
     e["damping"] = rows(damping_error);
-    e["method"] = "difference to a 2x coarser mesh / (2^(k+1) - 1)";
+    e["method"] = "difference to a 2x coarser mesh / (2^k - 1)";
     e["coarse_dofs"] = coarse_dofs;
     j["error_estimate"] = e;
   }
@@ -248,6 +248,12 @@ nlohmann::json CoefficientResult::to_json() const
 }
 
 CoefficientSolver::CoefficientSolver(MPI_Comm comm) : comm(comm), solver(comm) {}
+
+CoefficientSolver::CoefficientSolver(const FilmSettings &film_settings,
+                                     const CoefficientSettings &coefficient_settings, MPI_Comm comm)
+    : settings(coefficient_settings), comm(comm), solver(film_settings, comm)
+{
+}
 
 void CoefficientSolver::declare_parameters(ParameterHandler &prm)
 {
@@ -365,29 +371,26 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
 
   if (r.has_error_estimate)
   {
-    // Coefficients and loads of degree-k elements converge at least like h^(k+1).
-    const double factor = 1.0 / (std::pow(2.0, r.degree + 1) - 1);
+    // The same estimate as the loads of `sealfe solve` (h^k, estimate_load_errors): the
+    // coefficients are linear functionals of the perturbed pressure, which converges like p.
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
       {
         r.stiffness_error[i][j] =
-            factor * std::abs(r.coefficients.stiffness[i][j] - coarse.stiffness[i][j]);
+            richardson_error(r.coefficients.stiffness[i][j], coarse.stiffness[i][j], r.degree);
         r.damping_error[i][j] =
-            factor * std::abs(r.coefficients.damping[i][j] - coarse.damping[i][j]);
+            richardson_error(r.coefficients.damping[i][j], coarse.damping[i][j], r.degree);
       }
-    auto e = [&](const double fine, const double c) { return factor * std::abs(fine - c); };
-    const FilmLoads &f = r.loads, &c = coarse_loads;
-    r.load_error.force_z = e(f.force_z, c.force_z);
-    r.load_error.moment_x = e(f.moment_x, c.moment_x);
-    r.load_error.moment_y = e(f.moment_y, c.moment_y);
-    r.load_error.moment_restoring = e(f.moment_restoring, c.moment_restoring);
-    r.load_error.moment_transverse = e(f.moment_transverse, c.moment_transverse);
-    r.load_error.leakage_inner = e(f.leakage_inner, c.leakage_inner);
-    r.load_error.leakage_outer = e(f.leakage_outer, c.leakage_outer);
-    r.load_error.friction_torque = e(f.friction_torque, c.friction_torque);
-    r.load_error.cavitated_fraction = e(f.cavitated_fraction, c.cavitated_fraction);
+    r.load_error = estimate_load_errors(r.loads, coarse_loads, r.degree);
   }
   return r;
+}
+
+CoefficientResult CoefficientSolver::compute()
+{
+  const FilmThickness film = solver.settings.geometry;
+  const OperatingConditions conditions = solver.settings.conditions;
+  return compute(film, conditions);
 }
 
 std::function<FilmCoefficients(double, double)>
@@ -421,16 +424,17 @@ void declare_parameters(ParameterHandler &prm)
 
 nlohmann::json run(ParameterHandler &prm, const std::string &, MPI_Comm comm)
 {
-  FilmThickness film;
-  OperatingConditions conditions;
-  film.parse_parameters(prm);
-  conditions.parse_parameters(prm);
+  FilmSettings film_settings;
+  film_settings.parse_parameters(prm);
+  const FilmThickness &film = film_settings.geometry;
+  const OperatingConditions &conditions = film_settings.conditions;
   film.validate();
   conditions.validate();
-  CoefficientSolver solver(comm);
-  solver.parse_parameters(prm);
+  CoefficientSettings coefficient_settings;
+  coefficient_settings.parse_parameters(prm);
+  CoefficientSolver solver(film_settings, coefficient_settings, comm);
 
-  const CoefficientResult r = solver.compute(film, conditions);
+  const CoefficientResult r = solver.compute();
   nlohmann::json summary = r.to_json();
 
   // Level 0 on the same seal, so that a user sees what the closed form would have said (it

@@ -75,6 +75,26 @@ void AsperityContact::declare_parameters(dealii::ParameterHandler &prm)
 
 void AsperityContact::parse_parameters(dealii::ParameterHandler &prm)
 {
+  // sigma is the Roughness subsection's (one roughness for both models).
+  double sigma = 0;
+  try
+  {
+    prm.enter_subsection("Roughness");
+    sigma = prm.get_double("Composite roughness");
+    prm.leave_subsection();
+  }
+  catch (...)
+  {
+    throw std::runtime_error("Contact: sigma is read from 'Roughness/Composite roughness', which "
+                             "is not declared (call FlowFactors::declare_parameters)");
+  }
+
+  parse_parameters(prm, sigma);
+}
+
+void AsperityContact::parse_parameters(dealii::ParameterHandler &prm,
+                                       const double composite_roughness)
+{
   prm.enter_subsection("Contact");
   model_ = (prm.get("Model") == "gw-ceb") ? Model::gw_ceb : Model::none;
   p.asperity_radius = prm.get_double("Asperity radius");
@@ -86,18 +106,7 @@ void AsperityContact::parse_parameters(dealii::ParameterHandler &prm)
   p.asperity_offset = prm.get_double("Asperity mean offset");
   const std::string psi = prm.get("Plasticity index");
   prm.leave_subsection();
-
-  try
-  {
-    prm.enter_subsection("Roughness");
-    p.composite_roughness = prm.get_double("Composite roughness");
-    prm.leave_subsection();
-  }
-  catch (...)
-  {
-    throw std::runtime_error("Contact: sigma is read from 'Roughness/Composite roughness', which "
-                             "is not declared (call FlowFactors::declare_parameters)");
-  }
+  p.composite_roughness = composite_roughness;
 
   if (psi == "auto")
     p.plasticity_index =

@@ -1,6 +1,13 @@
 #include <sealfe/film/film_loads.h>
+#include <sealfe/film/reynolds_solver.h>
 
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sealfe
 {
@@ -28,4 +35,459 @@ nlohmann::json FilmLoads::to_json() const
                                       ? nlohmann::json(min_film_over_sigma)
                                       : nlohmann::json(nullptr)}};
 }
+
+// ------------------------------------------------------------------------------------------------
+// LoadIntegrator
+
+using namespace dealii;
+
+/// The solved state at one quadrature point.
+struct LoadIntegrator::PointState
+{
+  Point<2> x;
+  ReynoldsSolver::LocalFilm f;
+  double JxW, p, v, indicator, tau;
+  Tensor<1, 2> grad_p, grad_v;
+};
+
+/// One perturbation direction at one quadrature point (direction == nullptr: the solved state).
+struct LoadIntegrator::PointPerturbation
+{
+  const FilmPerturbation *direction = nullptr;
+  double dh = 0, dh_t = 0, dp = 0, dv = 0;
+  Tensor<1, 2> grad_dp, grad_dv;
+};
+
+LoadIntegrator::LoadIntegrator(const ReynoldsSolver &solver)
+    : solver(solver), clip(solver.cavitation.model == Cavitation::half_sommerfeld),
+      jfo(solver.cavitation.model == Cavitation::jfo), p_cav(solver.cavitation.pressure),
+      p_ref(solver.conditions.reference_pressure), cos_psi(std::cos(solver.film.tilt_angle)),
+      sin_psi(std::sin(solver.film.tilt_angle)), mu(solver.conditions.viscosity)
+{
+}
+
+FilmLoads LoadIntegrator::loads() const
+{
+  return integrate({nullptr}, {}, {})[0];
+}
+
+LoadIntegrator::VectorType LoadIntegrator::cavitation_indicator() const
+{
+  // Below this the film counts as cavitated (pressure at p_cav, or void fraction above zero).
+  const double p_tol = 1e-9 * std::max(solver.pressure_scale, 1.0);
+  VectorType owned(solver.locally_owned_dofs, solver.mpi_communicator);
+  for (const auto i : solver.locally_owned_dofs)
+    owned[i] = (jfo ? solver.locally_relevant_void[i] > 0
+                    : solver.locally_relevant_solution[i] <= p_cav + p_tol)
+                   ? 1.0
+                   : 0.0;
+  owned.compress(VectorOperation::insert);
+  VectorType indicator(solver.locally_owned_dofs, solver.locally_relevant_dofs,
+                       solver.mpi_communicator);
+  indicator = owned;
+  return indicator;
+}
+
+// Sums: 0 F, 1 Mx, 2 My, 3 Mr, 4 Mt, 5 residual inner, 6 residual outer, 7 friction, 8 area,
+// 9 cavitated area, 10 squeeze flow, 11 contact force, 12 contact Mx, 13 contact My, 14 real
+// contact area.
+constexpr unsigned int n_sums = 15;
+
+void LoadIntegrator::add_pressure_loads(const PointState &x, const PointPerturbation &d,
+                                        std::vector<double> &sum) const
+{
+  // Pressure in the loads: half-Sommerfeld clips it (and freezes the clipped region in the
+  // linearisation); the other models use the solved field. The asperity contact pressure (zero
+  // without a contact model) adds to it.
+  const ReynoldsSolver::LocalFilm &f = x.f;
+  const bool perturbed = d.direction != nullptr;
+  const double JxW = x.JxW, X = x.x[0], Y = x.x[1];
+  const bool clipped = clip && x.p < p_cav;
+  const double contact_p = perturbed ? f.dcontact_dh * d.dh : f.contact_pressure;
+  const double load_p =
+      (perturbed ? (clipped ? 0.0 : d.dp) : (clipped ? p_cav : x.p) - p_ref) + contact_p;
+  sum[0] += load_p * JxW;
+  sum[1] += load_p * Y * JxW;
+  sum[2] += -load_p * X * JxW;
+  sum[3] += -load_p * (X * cos_psi + Y * sin_psi) * JxW;
+  sum[4] += load_p * (Y * cos_psi - X * sin_psi) * JxW;
+  sum[8] += JxW;
+  sum[11] += contact_p * JxW;
+  sum[12] += contact_p * Y * JxW;
+  sum[13] += -contact_p * X * JxW;
+  if (!perturbed && solver.contact.enabled())
+    sum[14] += solver.contact.real_contact_area_fraction(f.h) * JxW;
+  // Cavitated area: half-Sommerfeld where the clipped pressure applies; reynolds and jfo where
+  // the interpolated nodal cavitation indicator is at least 1/2 (nodal, so that the overshoot of
+  // higher-order interpolants at the cavity edge does not count).
+  if (clipped || (solver.cavitation.is_nonlinear() && x.indicator >= 0.5))
+    sum[9] += JxW;
+}
+
+void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPerturbation &d,
+                                              std::vector<double> &sum) const
+{
+  // Shear on the rotor face, as a torque resisting the rotor, -r tau_1: Couette part (carried by
+  // the liquid fraction) and Poiseuille part; with roughness the Patir-Cheng shear-stress factors
+  // (FlowFactors::rotor_shear_stress).
+  const ReynoldsSolver::LocalFilm &f = x.f;
+  const double r = f.r, h = f.h, JxW = x.JxW;
+  const double liquid = 1 - x.v;
+  const double dp_dtheta = -x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1];
+  const double liquid_clamped = std::clamp(liquid, 0.0, 1.0);
+  const double u1 = solver.conditions.rotor_speed * r, u2 = solver.conditions.stator_speed * r;
+  const FlowFactors &flow = solver.flow_factors;
+  auto couette = [&](double hh)
+  { return -flow.rotor_shear_stress(std::max(hh, 1e-300), mu, u1, u2, 0.0) * r; };
+  auto poiseuille = [&](double hh, double dpdx)
+  { return -flow.rotor_shear_stress(std::max(hh, 1e-300), mu, 0.0, 0.0, dpdx) * r; };
+  if (!d.direction)
+  {
+    sum[7] += (liquid_clamped * couette(h) + poiseuille(h, dp_dtheta / r)) * JxW;
+    sum[10] += liquid * f.squeeze * JxW;
+  }
+  else
+  {
+    const double ddp_dtheta = -x.x[1] * d.grad_dp[0] + x.x[0] * d.grad_dp[1];
+    const double eps = 1e-7 * h;
+    const double dcouette = (couette(h + eps) - couette(h - eps)) / (2 * eps);
+    const double dpois =
+        (poiseuille(h + eps, dp_dtheta / r) - poiseuille(h - eps, dp_dtheta / r)) / (2 * eps);
+    sum[7] += (-d.dv * couette(h) + liquid * dcouette * d.dh + dpois * d.dh +
+               poiseuille(h, ddp_dtheta / r)) *
+              JxW;
+    sum[10] += (-d.dv * f.squeeze + liquid * f.dsqueeze_dht * d.dh_t) * JxW;
+  }
+}
+
+void LoadIntegrator::add_residual(const PointState &x, const PointPerturbation &d,
+                                  const std::vector<Tensor<1, 2>> &shape_grad,
+                                  const std::vector<double> &shape_value,
+                                  Vector<double> &local_residual) const
+{
+  // Residual of the unconstrained weak form in m^3/s (its linearisation with a perturbation):
+  //   R_i = int (K grad p - s c) . grad phi_i + s dh_T/dt phi_i - tau div(v c) (u . grad phi_i).
+  const ReynoldsSolver::LocalFilm &f = x.f;
+  const double liquid = 1 - x.v, tau = x.tau;
+  Tensor<1, 2> flux;
+  double volume, streamline;
+  if (!d.direction)
+  {
+    flux = f.K * x.grad_p - liquid * f.c;
+    volume = liquid * f.squeeze;
+    streamline = -tau * (f.c * x.grad_v + x.v * f.c_div);
+  }
+  else
+  {
+    const double dh = d.dh;
+    flux = f.K * d.grad_dp + dh * (f.dK_dh * x.grad_p) - (liquid * dh * f.dc_dh - d.dv * f.c);
+    volume = liquid * f.dsqueeze_dht * d.dh_t - d.dv * f.squeeze;
+    const double step = 1e-6;
+    const FilmPerturbation &p = *d.direction;
+    const double ddh_dtheta =
+        p.dh ? (p.dh(f.r, f.theta + step) - p.dh(f.r, f.theta - step)) / (2 * step) : 0.0;
+    // (second derivatives of the flow factors in h are neglected here)
+    streamline = -tau * (f.c * d.grad_dv + d.dv * f.c_div + dh * (f.dc_dh * x.grad_v) +
+                         x.v * f.dc_div_factor * ddh_dtheta);
+  }
+  for (unsigned int i = 0; i < local_residual.size(); ++i)
+    local_residual(i) +=
+        (flux * shape_grad[i] + volume * shape_value[i] + streamline * (f.u * shape_grad[i])) *
+        x.JxW;
+}
+
+std::vector<FilmLoads>
+LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbations,
+                          const std::vector<const VectorType *> &dp_nodal,
+                          const std::vector<const VectorType *> &dv_nodal) const
+{
+  // One cell loop for the solved state (perturbations = {nullptr}) or for all perturbation
+  // directions at once (the film data at each quadrature point are computed once).
+  const ReynoldsSolver &s = solver;
+  const unsigned int n_k = perturbations.size();
+  const bool base = n_k == 1 && perturbations[0] == nullptr;
+  const QGauss<2> quadrature(s.polynomial_degree + 2); // the assembly's rule (see there)
+  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n_q = quadrature.size(), dofs_per_cell = s.fe->n_dofs_per_cell();
+  std::vector<double> p(n_q), v(n_q, 0.0), indicator(n_q, 0.0), shape_value(dofs_per_cell);
+  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q), shape_grad(dofs_per_cell);
+  std::vector<std::vector<double>> dp_k(n_k, std::vector<double>(n_q, 0.0)), dv_k = dp_k;
+  std::vector<std::vector<Tensor<1, 2>>> grad_dp_k(n_k, std::vector<Tensor<1, 2>>(n_q)),
+      grad_dv_k = grad_dp_k;
+  std::vector<types::global_dof_index> dofs(dofs_per_cell);
+  const bool nonlinear = s.cavitation.is_nonlinear();
+  const VectorType indicator_nodal = base && nonlinear ? cavitation_indicator() : VectorType();
+
+  std::vector<std::vector<double>> sums(n_k, std::vector<double>(n_sums, 0.0));
+  double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
+  std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
+
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      fe_values.reinit(cell);
+      fe_values.get_function_values(s.locally_relevant_solution, p);
+      fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+      if (jfo)
+      {
+        fe_values.get_function_values(s.locally_relevant_void, v);
+        fe_values.get_function_gradients(s.locally_relevant_void, grad_v);
+      }
+      for (unsigned int k = 0; k < n_k; ++k)
+      {
+        if (k < dp_nodal.size() && dp_nodal[k])
+        {
+          fe_values.get_function_values(*dp_nodal[k], dp_k[k]);
+          fe_values.get_function_gradients(*dp_nodal[k], grad_dp_k[k]);
+        }
+        if (k < dv_nodal.size() && dv_nodal[k])
+        {
+          fe_values.get_function_values(*dv_nodal[k], dv_k[k]);
+          fe_values.get_function_gradients(*dv_nodal[k], grad_dv_k[k]);
+        }
+        local_residual_k[k] = 0;
+      }
+      if (base && nonlinear)
+        fe_values.get_function_values(indicator_nodal, indicator);
+      PointState x;
+      x.tau = jfo ? s.streamline_tau(cell) : 0.0;
+      cell->get_dof_indices(dofs);
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        x.x = fe_values.quadrature_point(q);
+        x.f = s.local_film(x.x);
+        x.JxW = fe_values.JxW(q);
+        x.p = p[q];
+        x.v = v[q];
+        x.indicator = indicator[q];
+        x.grad_p = grad_p[q];
+        x.grad_v = grad_v[q];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          shape_grad[i] = fe_values.shape_grad(i, q);
+          shape_value[i] = fe_values.shape_value(i, q);
+        }
+        if (base)
+        {
+          p_min = std::min(p_min, p[q]);
+          p_max = std::max(p_max, p[q]);
+        }
+        for (unsigned int k = 0; k < n_k; ++k)
+        {
+          PointPerturbation d;
+          d.direction = perturbations[k];
+          if (d.direction)
+          {
+            d.dh = d.direction->dh ? d.direction->dh(x.f.r, x.f.theta) : 0.0;
+            d.dh_t = d.direction->dh_dt ? d.direction->dh_dt(x.f.r, x.f.theta) : 0.0;
+          }
+          d.dp = dp_k[k][q];
+          d.dv = dv_k[k][q];
+          d.grad_dp = grad_dp_k[k][q];
+          d.grad_dv = grad_dv_k[k][q];
+          add_pressure_loads(x, d, sums[k]);
+          add_friction_and_squeeze(x, d, sums[k]);
+          add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
+        }
+      }
+      for (unsigned int k = 0; k < n_k; ++k)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          if (s.inner_boundary_dofs.is_element(dofs[i]))
+            sums[k][5] += local_residual_k[k](i);
+          if (s.outer_boundary_dofs.is_element(dofs[i]))
+            sums[k][6] += local_residual_k[k](i);
+        }
+    }
+  if (base)
+    for (const auto i : s.locally_owned_dofs)
+    {
+      // Nodal values too: for Lagrange elements they are point values of p_h.
+      p_min = std::min(p_min, s.locally_relevant_solution[i]);
+      p_max = std::max(p_max, s.locally_relevant_solution[i]);
+    }
+  std::vector<FilmLoads> result;
+  for (unsigned int k = 0; k < n_k; ++k)
+    result.push_back(finish(sums[k], base, p_min, p_max));
+  return result;
+}
+
+FilmLoads LoadIntegrator::finish(const std::vector<double> &sum, const bool base,
+                                 const double p_min, const double p_max) const
+{
+  const ReynoldsSolver &s = solver;
+  std::vector<double> total(sum.size());
+  MPI_Allreduce(sum.data(), total.data(), static_cast<int>(total.size()), MPI_DOUBLE, MPI_SUM,
+                s.mpi_communicator);
+  FilmLoads loads;
+  loads.force_z = total[0];
+  loads.moment_x = total[1];
+  loads.moment_y = total[2];
+  loads.moment_restoring = total[3];
+  loads.moment_transverse = total[4];
+  // The residual on a boundary is -(outward volume flux) through it.
+  loads.leakage_inner = -total[5];
+  loads.leakage_outer = -total[6];
+  loads.friction_torque = total[7];
+  loads.squeeze_flow = total[10];
+  loads.contact_force = total[11];
+  loads.contact_moment_x = total[12];
+  loads.contact_moment_y = total[13];
+  if (base)
+  {
+    loads.area = total[8];
+    loads.contact_area_fraction = total[14] / total[8];
+    loads.min_film = s.film.minimum().value;
+    loads.min_film_over_sigma = s.flow_factors.is_smooth() && !s.contact.enabled()
+                                    ? std::numeric_limits<double>::infinity()
+                                    : loads.min_film / s.flow_factors.composite_roughness();
+    loads.cavitated_fraction = total[9] / total[8];
+    loads.min_pressure = Utilities::MPI::min(p_min, s.mpi_communicator);
+    loads.max_pressure = Utilities::MPI::max(p_max, s.mpi_communicator);
+  }
+  return loads;
+}
+
+std::vector<LoadIntegrator::VectorType> LoadIntegrator::linearized_right_hand_sides(
+    const std::vector<FilmPerturbation> &perturbations) const
+{
+  // d(residual)/dh in each perturbation direction, scaled like the system by 12 mu / C0^3; the
+  // perturbed unknown has homogeneous Dirichlet data. For reynolds/jfo the matrix is the
+  // Jacobian of the converged state (jfo: the FB-Newton Jacobian, whose eliminations move the
+  // cavity boundary with the perturbation; reynolds: the active set, frozen). One cell loop for
+  // all right-hand sides.
+  const ReynoldsSolver &s = solver;
+  const QGauss<2> quadrature(s.polynomial_degree + 2); // the assembly's rule
+  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n_q = quadrature.size(), n = s.fe->n_dofs_per_cell();
+  const unsigned int n_perturbations = perturbations.size();
+  std::vector<double> v(n_q);
+  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q);
+  std::vector<types::global_dof_index> dofs(n);
+  std::vector<Vector<double>> cell_rhs(n_perturbations, Vector<double>(n));
+
+  std::vector<VectorType> rhs(n_perturbations,
+                              VectorType(s.locally_owned_dofs, s.mpi_communicator));
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      fe_values.reinit(cell);
+      fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+      if (jfo)
+      {
+        fe_values.get_function_values(s.locally_relevant_void, v);
+        fe_values.get_function_gradients(s.locally_relevant_void, grad_v);
+      }
+      const double tau = jfo ? s.streamline_tau(cell) : 0.0;
+      for (auto &c : cell_rhs)
+        c = 0;
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const ReynoldsSolver::LocalFilm f = s.local_film(fe_values.quadrature_point(q));
+        const double r = f.r, theta = f.theta, JxW = fe_values.JxW(q);
+        const double liquid = jfo ? 1 - v[q] : 1.0;
+        for (unsigned int k = 0; k < n_perturbations; ++k)
+        {
+          const FilmPerturbation &perturbation = perturbations[k];
+          const double dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
+          const double dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
+          const Tensor<1, 2> dflux = dh * (f.dK_dh * grad_p[q]) - liquid * dh * f.dc_dh;
+          double streamline = 0;
+          if (jfo)
+          {
+            // d/dh of -tau div(v c): -tau (dh c' . grad v + v omega_eff' d(dh)/dtheta), the
+            // theta derivative of dh by a central difference (dh is smooth in theta).
+            const double d = 1e-6;
+            const double ddh_dtheta =
+                perturbation.dh
+                    ? (perturbation.dh(r, theta + d) - perturbation.dh(r, theta - d)) / (2 * d)
+                    : 0.0;
+            streamline = -tau * (dh * (f.dc_dh * grad_v[q]) + v[q] * f.dc_div_factor * ddh_dtheta);
+          }
+          for (unsigned int i = 0; i < n; ++i)
+            cell_rhs[k](i) -= s.equation_scale *
+                              (dflux * fe_values.shape_grad(i, q) +
+                               liquid * f.dsqueeze_dht * dh_dt * fe_values.shape_value(i, q) +
+                               streamline * (f.u * fe_values.shape_grad(i, q))) *
+                              JxW;
+        }
+      }
+      cell->get_dof_indices(dofs);
+      for (unsigned int k = 0; k < n_perturbations; ++k)
+        s.homogeneous_constraints.distribute_local_to_global(cell_rhs[k], dofs, rhs[k]);
+    }
+  for (auto &r : rhs)
+  {
+    r.compress(VectorOperation::add);
+    if (s.cavitation.model == Cavitation::reynolds)
+    {
+      for (const auto i : s.active_set)
+        r[i] = 0; // frozen cavity: p stays p_cav there
+      r.compress(VectorOperation::insert);
+    }
+  }
+  return rhs;
+}
+
+void LoadIntegrator::nodal_perturbations(const VectorType &du, VectorType &dp, VectorType &dv) const
+{
+  const ReynoldsSolver &s = solver;
+  const bool nonlinear = s.cavitation.is_nonlinear();
+  VectorType dp_owned(s.locally_owned_dofs, s.mpi_communicator),
+      dv_owned(s.locally_owned_dofs, s.mpi_communicator);
+  for (const auto i : s.locally_owned_dofs)
+  {
+    if (!nonlinear)
+      dp_owned[i] = du[i];
+    else if (!jfo)
+      dp_owned[i] = s.pressure_scale * du[i];
+    else if (s.jfo_keep_pressure[i] > 0.5)
+    {
+      dp_owned[i] = s.pressure_scale * du[i];
+      dv_owned[i] = s.jfo_elimination[i] * du[i];
+    }
+    else
+    {
+      dv_owned[i] = du[i];
+      dp_owned[i] = s.pressure_scale * s.jfo_elimination[i] * du[i];
+    }
+  }
+  dp_owned.compress(VectorOperation::insert);
+  dv_owned.compress(VectorOperation::insert);
+  dp.reinit(s.locally_owned_dofs, s.locally_relevant_dofs, s.mpi_communicator);
+  dv.reinit(s.locally_owned_dofs, s.locally_relevant_dofs, s.mpi_communicator);
+  dp = dp_owned;
+  dv = dv_owned;
+}
+
+std::vector<FilmLoads>
+LoadIntegrator::linearized_loads(const std::vector<FilmPerturbation> &perturbations) const
+{
+  // One solve per direction with the factorisation (or AMG hierarchy) of run().
+  const ReynoldsSolver &s = solver;
+  const unsigned int n_perturbations = perturbations.size();
+  const std::vector<VectorType> rhs = linearized_right_hand_sides(perturbations);
+  std::vector<VectorType> dp_all(n_perturbations), dv_all(n_perturbations);
+  for (unsigned int k = 0; k < n_perturbations; ++k)
+  {
+    VectorType du(s.locally_owned_dofs, s.mpi_communicator);
+    s.solve_linear_system(rhs[k], du);
+    s.homogeneous_constraints.distribute(du);
+    nodal_perturbations(du, dp_all[k], dv_all[k]);
+  }
+  std::vector<const FilmPerturbation *> directions;
+  std::vector<const VectorType *> dp_pointers, dv_pointers;
+  for (unsigned int k = 0; k < n_perturbations; ++k)
+  {
+    directions.push_back(&perturbations[k]);
+    dp_pointers.push_back(&dp_all[k]);
+    dv_pointers.push_back(jfo ? &dv_all[k] : nullptr);
+  }
+  return integrate(directions, dp_pointers, dv_pointers);
+}
+
 } // namespace sealfe

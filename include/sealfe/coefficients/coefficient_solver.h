@@ -4,6 +4,7 @@
 
 #include <sealfe/film/film_coefficients.h>
 #include <sealfe/film/film_loads.h>
+#include <sealfe/film/film_settings.h>
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
 #include <sealfe/film/reynolds_solver.h>
@@ -65,8 +66,8 @@ struct CoefficientResult
   FilmLoads loads;               // of the operating point itself
 
   /// Discretisation error estimate of every entry of K and D and of the loads: the difference to
-  /// the same computation on a mesh twice as coarse, divided by 2^(k+1) - 1 (the coefficients
-  /// are linear functionals of the perturbed pressure, which converges like the pressure).
+  /// the same computation on a mesh twice as coarse, divided by 2^k - 1 (richardson_error, the
+  /// same estimate as the loads of `sealfe solve`; why h^k: estimate_load_errors).
   bool has_error_estimate = false;
   FilmCoefficients::Matrix3 stiffness_error{}, damping_error{};
   FilmLoads load_error;
@@ -98,6 +99,9 @@ class CoefficientSolver
 {
 public:
   explicit CoefficientSolver(MPI_Comm comm);
+  /// The whole film problem and the coefficient method.
+  CoefficientSolver(const FilmSettings &film_settings,
+                    const CoefficientSettings &coefficient_settings, MPI_Comm comm);
 
   /// ReynoldsSolver's subsections and "Coefficients".
   static void declare_parameters(dealii::ParameterHandler &prm);
@@ -112,6 +116,8 @@ public:
   /// "Error estimate" is on and the mesh can be coarsened. Throws std::runtime_error (from the
   /// solver) on bad geometry or a failed solve.
   CoefficientResult compute(const FilmThickness &film, const OperatingConditions &conditions);
+  /// The same at the geometry and conditions of the solver's settings (reynolds().settings).
+  CoefficientResult compute();
 
   /// Only the coefficients on the mesh `coarsening` levels coarser than asked for (no estimate).
   FilmCoefficients coefficients(const FilmThickness &film, const OperatingConditions &conditions,

@@ -51,12 +51,12 @@ struct AsperityContactParameters
 /// Reads subsection "Contact"; sigma is the "Roughness" subsection's Composite roughness (one
 /// roughness for both models), so FlowFactors::declare_parameters must have been called too.
 ///
-/// h is the local nominal film thickness of Green (2002) Eq. 24 (and of doc/reynolds.md): the distance
-/// between the mean planes of the two faces' surface heights, the same h the Reynolds equation
-/// and the flow factors use. h* = h/sigma; asperities touch where their height above their own
-/// mean exceeds h - y_s. h may be zero or negative (faces pressed into each other): the formulas
-/// hold, but the model's independent-asperity assumption does not once the real contact area
-/// fraction is no longer small.
+/// h is the local nominal film thickness of Green (2002) Eq. 24 (and of doc/reynolds.md): the
+/// distance between the mean planes of the two faces' surface heights, the same h the Reynolds
+/// equation and the flow factors use. h* = h/sigma; asperities touch where their height above their
+/// own mean exceeds h - y_s. h may be zero or negative (faces pressed into each other): the
+/// formulas hold, but the model's independent-asperity assumption does not once the real contact
+/// area fraction is no longer small.
 class AsperityContact
 {
 public:
@@ -68,6 +68,9 @@ public:
 
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
+  /// The same with sigma given (FilmSettings passes the flow factors' composite roughness, so
+  /// this module does not read another module's subsection).
+  void parse_parameters(dealii::ParameterHandler &prm, double composite_roughness);
   /// Throws std::runtime_error if a parameter is not positive (y_s may be any finite number).
   void validate() const;
 

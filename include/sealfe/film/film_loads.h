@@ -1,8 +1,16 @@
 // FilmLoads: the integral results of a film solution (force, moments, leakage, friction) in SI
-// units, with the sign conventions of doc/reynolds.md, conventions.
+// units, with the sign conventions of doc/reynolds.md, conventions; LoadIntegrator: their
+// integration over a ReynoldsSolver's solution and their linearisation.
 #pragma once
 
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
 #include <nlohmann/json.hpp>
+
+#include <functional>
+#include <vector>
 
 namespace sealfe
 {
@@ -34,6 +42,68 @@ struct FilmLoads
   double area = 0; ///< area of the dam as integrated (m^2): the discrete domain for the FE model
 
   nlohmann::json to_json() const;
+};
+
+/// A perturbation direction of the film: dh/dq (m per unit q) and d(dh/dt)/d(qdot) (m/s per unit
+/// qdot), as functions of (r, theta). For q = (z, tilt_x, tilt_y): dh/dq = 1, r sin(theta),
+/// -r cos(theta) (film_thickness.h), and the same for the rates.
+struct FilmPerturbation
+{
+  std::function<double(double, double)> dh;
+  std::function<double(double, double)> dh_dt;
+};
+
+class ReynoldsSolver;
+
+/// Loads of a ReynoldsSolver's last solution, and their derivatives along film perturbations
+/// (ReynoldsSolver::linearized_loads). One integration routine for both, so that the
+/// linearisation differentiates exactly what the loads integrate.
+class LoadIntegrator
+{
+public:
+  using VectorType = dealii::TrilinosWrappers::MPI::Vector;
+
+  explicit LoadIntegrator(const ReynoldsSolver &solver);
+  /// Loads of the solved state.
+  FilmLoads loads() const;
+  /// Derivatives of every load along each perturbation: the Reynolds system linearised about the
+  /// solved state, one solve each with the solver's factorisation.
+  std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
+
+private:
+  struct PointState;
+  struct PointPerturbation;
+
+  /// Right-hand sides -(dR/dh) dh - (dR/dh_t) dh_t of the linearised system, one per direction.
+  std::vector<VectorType>
+  linearized_right_hand_sides(const std::vector<FilmPerturbation> &perturbations) const;
+  /// Nodal pressure and void-fraction perturbations (dp, dv) from the solution du of the
+  /// linearised system (the unknown is p, u = (p - p_cav)/P, or the JFO node's kept unknown).
+  void nodal_perturbations(const VectorType &du, VectorType &dp, VectorType &dv) const;
+  /// Loads of the solved state (perturbations = {nullptr}) or their derivatives for perturbations
+  /// whose nodal pressure and void-fraction changes are dp, dv.
+  std::vector<FilmLoads> integrate(const std::vector<const FilmPerturbation *> &perturbations,
+                                   const std::vector<const VectorType *> &dp,
+                                   const std::vector<const VectorType *> &dv) const;
+  /// Nodal cavitation indicator (1 cavitated, 0 full film) of the reynolds and jfo solutions.
+  VectorType cavitation_indicator() const;
+  /// Force, moments, area, cavitated area and contact sums at one quadrature point.
+  void add_pressure_loads(const PointState &x, const PointPerturbation &d,
+                          std::vector<double> &sum) const;
+  /// Friction torque and squeeze flow sums at one quadrature point.
+  void add_friction_and_squeeze(const PointState &x, const PointPerturbation &d,
+                                std::vector<double> &sum) const;
+  /// The point's contribution to the cell residual of the weak form (leakages).
+  void add_residual(const PointState &x, const PointPerturbation &d,
+                    const std::vector<dealii::Tensor<1, 2>> &shape_grad,
+                    const std::vector<double> &shape_value,
+                    dealii::Vector<double> &local_residual) const;
+  /// Global sums into FilmLoads.
+  FilmLoads finish(const std::vector<double> &sum, bool base, double p_min, double p_max) const;
+
+  const ReynoldsSolver &solver;
+  bool clip, jfo;
+  double p_cav, p_ref, cos_psi, sin_psi, mu;
 };
 
 } // namespace sealfe

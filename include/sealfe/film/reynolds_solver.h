@@ -1,14 +1,11 @@
 // ReynoldsSolver: the full 2D finite-element Reynolds equation on the annular dam (level 2 of
-// doc/reynolds.md), distributed over MPI ranks, with loads, consistent leakage and VTU output.
+// doc/reynolds.md), distributed over MPI ranks, in the shape of deal.II's step-40: setup (once per
+// mesh), assemble, solve (with the cavitation solvers of reynolds_cavitation_solver.h and
+// jfo_solver.h), loads (film_loads.h) and output (film_output.h).
 #pragma once
 
-#include <sealfe/film/annulus_mesh.h>
-#include <sealfe/film/asperity_contact.h>
-#include <sealfe/film/cavitation.h>
 #include <sealfe/film/film_loads.h>
-#include <sealfe/film/film_thickness.h>
-#include <sealfe/film/flow_factors.h>
-#include <sealfe/film/operating_conditions.h>
+#include <sealfe/film/film_settings.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function.h>
@@ -42,35 +39,35 @@ namespace sealfe
 /// with p = pi on r = ri and p = po on r = ro, by continuous Q_k elements on a curved (MappingQ_k)
 /// mesh. The equation is scaled by 12 mu / C0^3 so that the matrix is O(1) and solver tolerances
 /// are relative. Leakage is the consistent (residual) boundary flux, so the two leakages balance
-/// to solver tolerance. Reads subsection "Discretization" (with AnnulusMesh).
+/// to solver tolerance. All inputs are one FilmSettings. The mesh, degrees of freedom, sparsity
+/// pattern and zero-Dirichlet constraints are built once and reused by every run() whose
+/// settings give the same discretisation (FilmSettings::same_discretization): a transient or a
+/// sweep changing z, tilts, rates, speeds or pressures only assembles and solves again.
 class ReynoldsSolver
 {
 public:
-  enum class LinearSolver
-  {
-    automatic,
-    direct,
-    cg_amg
-  };
+  using LinearSolver = FilmSettings::LinearSolver;
 
   explicit ReynoldsSolver(MPI_Comm comm);
+  ReynoldsSolver(const FilmSettings &settings, MPI_Comm comm);
+  ReynoldsSolver(const ReynoldsSolver &) = delete;
+  ReynoldsSolver &operator=(const ReynoldsSolver &) = delete;
+  ~ReynoldsSolver();
 
+  /// The solver part of FilmSettings (Discretization, Cavitation, Roughness, Contact).
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
 
-  /// Set up, assemble and solve on the mesh `coarsening` levels coarser than asked for, and return
-  /// the loads. Throws std::runtime_error on bad geometry or a linear solver failure.
+  /// Set up (if the discretisation changed), assemble and solve the problem of `settings` on the
+  /// mesh `coarsening` levels coarser than asked for, and return the loads. Throws
+  /// std::runtime_error on bad geometry or a linear solver failure.
+  FilmLoads run(const unsigned int coarsening = 0);
+  /// The same with the geometry and operating conditions replaced by these.
   FilmLoads run(const FilmThickness &film, const OperatingConditions &conditions,
                 const unsigned int coarsening = 0);
 
-  /// A perturbation direction of the film: dh/dq (m per unit q) and d(dh/dt)/d(qdot) (m/s per unit
-  /// qdot), as functions of (r, theta). For q = (z, tilt_x, tilt_y): dh/dq = 1, r sin(theta),
-  /// -r cos(theta) (film_thickness.h), and the same for the rates.
-  struct FilmPerturbation
-  {
-    std::function<double(double, double)> dh;
-    std::function<double(double, double)> dh_dt;
-  };
+  /// A perturbation direction of the film (film_loads.h).
+  using FilmPerturbation = sealfe::FilmPerturbation;
 
   /// Derivative of every load of the last run() in the direction `perturbation`: the Reynolds
   /// system linearised about the solved pressure, A dp = -(dR/dh) dh - (dR/dh_t) dh_t, solved with
@@ -97,7 +94,7 @@ public:
   LocalFilm local_film(const dealii::Point<2> &x) const;
 
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
-  /// into `directory`; returns the PVD file name.
+  /// into `directory`; returns the PVD file name (film_output.h).
   std::string write_output(const std::string &directory) const;
 
   /// Volume flow (m^3/s) outward through the circle r = rho, -int h^3/(12 mu) dp/dr rho dtheta
@@ -111,8 +108,13 @@ public:
 
   dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
   unsigned int degree() const { return polynomial_degree; }
-  const AnnulusMesh &mesh() const { return mesh_parameters; }
-  AnnulusMesh &mesh() { return mesh_parameters; }
+  const AnnulusMesh &mesh() const { return settings.mesh; }
+  AnnulusMesh &mesh() { return settings.mesh; }
+  /// How often the mesh, dofs and sparsity were built (1 for a sequence of runs on one geometry).
+  unsigned int n_setups() const { return setup_count; }
+  /// The solver of the mesh twice as coarse that gave the last JFO solve its start (mesh
+  /// sequencing), or nullptr. Its settings are a copy of these (with the coarser coarsening).
+  const ReynoldsSolver *coarse_level_solver() const { return coarse_solver.get(); }
   bool error_estimate_enabled() const { return estimate_error; }
   unsigned int linear_iterations() const { return last_iterations; }
   /// Newton iterations and final relative mass residual of the cavitation solve (reynolds, jfo).
@@ -128,53 +130,53 @@ public:
   std::function<double(const dealii::Point<2> &)> boundary_pressure;
   std::function<double(const dealii::Point<2> &)> source;
 
-  /// Cavitation treatment of the loads: none (full film) or half-Sommerfeld (the full-film
-  /// pressure clipped at p_cav when integrating force, moments and friction).
-  CavitationSettings cavitation;
-  /// Rough faces: Patir-Cheng average flow (subsection "Roughness"; Model = none is the smooth
-  /// Reynolds equation) and GW/CEB asperity contact (subsection "Contact"), whose mean contact
-  /// pressure adds to the film pressure in force and moments.
-  FlowFactors flow_factors;
-  AsperityContact contact;
-
-  unsigned int polynomial_degree = 2;
-  LinearSolver linear_solver = LinearSolver::automatic;
-  double solver_tolerance = 1e-12;
-  bool estimate_error = true;
+  /// Everything the solve depends on. Changing it between runs is allowed; the mesh is rebuilt
+  /// only when the discretisation changes.
+  FilmSettings settings;
+  /// The same objects as settings.cavitation, ... (shorter names used by the tests and front
+  /// ends). Cavitation treatment: none, half-Sommerfeld (loads clipped at p_cav), reynolds, jfo.
+  CavitationSettings &cavitation = settings.cavitation;
+  /// Rough faces: Patir-Cheng average flow (Model = none is the smooth Reynolds equation) and
+  /// GW/CEB asperity contact, whose mean contact pressure adds to the film pressure.
+  FlowFactors &flow_factors = settings.flow_factors;
+  AsperityContact &contact = settings.contact;
+  unsigned int &polynomial_degree = settings.polynomial_degree;
+  LinearSolver &linear_solver = settings.linear_solver;
+  double &solver_tolerance = settings.solver_tolerance;
+  bool &estimate_error = settings.estimate_error;
 
 private:
+  friend class ReynoldsCavitationSolver;
+  friend class JFOSolver;
+  friend class LoadIntegrator;
+  friend std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory);
+
   void setup_system(const unsigned int coarsening);
+  void setup_constraints();
   void assemble_system();
   void factorize();
   unsigned int solve_linear_system(const dealii::TrilinosWrappers::MPI::Vector &rhs,
                                    dealii::TrilinosWrappers::MPI::Vector &x) const;
   void solve();
   void solve_cavitation();
-  void solve_jfo(const double flow_scale);
-  double assemble_jfo_system(const dealii::TrilinosWrappers::MPI::Vector &a,
-                             const dealii::TrilinosWrappers::MPI::Vector &v,
-                             const bool with_jacobian,
-                             dealii::TrilinosWrappers::MPI::Vector &residual,
-                             dealii::TrilinosWrappers::MPI::Vector &newton_rhs,
-                             const bool active_set_step = false);
   void cell_film_matrices(dealii::FEValues<2> &fe_values,
                           const dealii::DoFHandler<2>::active_cell_iterator &cell,
                           const bool with_void, dealii::FullMatrix<double> &A,
                           dealii::FullMatrix<double> &G, dealii::Vector<double> &F) const;
-  double assemble_reynolds_system(const dealii::TrilinosWrappers::MPI::Vector &u,
-                                  const bool with_jacobian,
-                                  dealii::TrilinosWrappers::MPI::Vector &rhs);
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
-  std::vector<FilmLoads>
-  integrate_loads(const std::vector<const FilmPerturbation *> &perturbations,
-                  const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &dp,
-                  const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &dv) const;
   FilmLoads compute_loads() const;
 
   MPI_Comm mpi_communicator;
-  AnnulusMesh mesh_parameters;
-  FilmThickness film;
-  OperatingConditions conditions;
+  AnnulusMesh &mesh_parameters = settings.mesh;
+  FilmThickness &film = settings.geometry;
+  OperatingConditions &conditions = settings.conditions;
+  /// The settings and coarsening of the last setup_system (null before the first).
+  std::unique_ptr<FilmSettings> setup_settings;
+  unsigned int setup_coarsening = 0;
+  unsigned int setup_count = 0;
+  /// JFO mesh sequencing: the solver of the mesh twice as coarse (kept, so that its mesh is
+  /// reused too).
+  std::unique_ptr<ReynoldsSolver> coarse_solver;
 
   dealii::parallel::distributed::Triangulation<2> triangulation;
   std::unique_ptr<dealii::FE_Q<2>> fe;
@@ -201,9 +203,6 @@ private:
   dealii::TrilinosWrappers::MPI::Vector reynolds_diagonal;
   std::vector<dealii::types::global_dof_index> active_set; // reynolds: dofs held at p_cav
   double pressure_scale = 1;
-  double jfo_flow_scale = 1;
-  std::vector<dealii::FullMatrix<double>> cell_A, cell_G; // JFO cell matrices (one solve)
-  std::vector<dealii::Vector<double>> cell_F;
   dealii::TrilinosWrappers::MPI::Vector jfo_keep_pressure; // 1: node kept dp, 0: kept dv
   dealii::TrilinosWrappers::MPI::Vector jfo_elimination;   // d(eliminated)/d(kept)
   unsigned int cavitation_iterations = 0;
@@ -214,7 +213,8 @@ private:
   mutable dealii::TimerOutput timer;
 };
 
-/// Error estimate of every load of a degree-k solve from the same solve on a mesh twice as coarse.
+/// Error estimate of every load of a degree-k solve from the same solve on a mesh twice as coarse
+/// (richardson_error of film_settings.h applied to each load; also used for the coefficients).
 /// If a load converges like h^m, its error is |L_h - L_2h| / (2^m - 1). Asymptotically m is k + 1
 /// (the L2 rate of p) or more (linear functionals), but on practical meshes the observed rate of
 /// the moments was below k + 1 (1.8 for k = 1): the estimate assumes only m = k (the H1 rate),

@@ -1,0 +1,44 @@
+// FiniteElementFilm: the finite-element film (level 2) behind the dynamics' FilmForceModel: one
+// Reynolds solve per load evaluation, the linearised coefficients for stiffness and damping.
+#pragma once
+
+#include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/film/film_force_model.h>
+#include <sealfe/film/film_settings.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <string>
+
+namespace sealfe
+{
+/// Built for one seal from FilmSettings (everything beyond the FilmState: radii, C0, waviness,
+/// fluid, roughness, contact, cavitation, mesh). Keeps one CoefficientSolver, whose ReynoldsSolver
+/// builds the mesh, dofs and sparsity once and reuses them for every state with the same
+/// discretisation (states change z, tilts, rates, speeds and pressures; a coning change remeshes
+/// only when the radial grading uses it). Not thread-safe (FilmForceModel).
+class FiniteElementFilm : public FilmForceModel
+{
+public:
+  FiniteElementFilm(const FilmSettings &settings, MPI_Comm comm,
+                    const CoefficientSettings &coefficient_settings = CoefficientSettings());
+
+  FilmLevel level() const override { return FilmLevel::finite_element; }
+  std::string description() const override;
+  /// One finite-element solve at `state` (FilmState::apply on the settings' geometry and
+  /// conditions), on the unrefined mesh of the settings.
+  FilmLoads loads(const FilmState &state) const override;
+  /// K, D of CoefficientSolver (its method, by default the linearised Reynolds system) at
+  /// `state`, without the error estimate.
+  FilmCoefficients coefficients(const FilmState &state) const override;
+
+  /// The solver (mesh, dofs, last solution), e.g. for n_dofs() and n_setups().
+  const ReynoldsSolver &reynolds() const { return solver.reynolds(); }
+  const FilmSettings &settings() const { return base; }
+
+private:
+  FilmSettings base;
+  mutable CoefficientSolver solver;
+};
+
+} // namespace sealfe

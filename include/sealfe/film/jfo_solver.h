@@ -1,0 +1,69 @@
+// JFOSolver: the mass-conserving (Jakobsson-Floberg-Olsson / Elrod-Adams) cavitation problem of a
+// ReynoldsSolver's discretisation, by Fischer-Burmeister-Newton-Schur with active-set polishing.
+#pragma once
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
+namespace sealfe
+{
+class ReynoldsSolver;
+
+/// Solves, on the mesh, dofs and matrix of `solver` (whose full-film solution is the start), for
+/// the nodal a_j = (p_j - p_cav)/P >= 0 and void fraction v_j >= 0 with a_j v_j = 0 and the
+/// discrete mass balance (doc/cavitation.md, and the comment above ReynoldsSolver's
+/// cell_film_matrices). Leaves the pressure and void fraction, the factorised Jacobian at the
+/// solution and the elimination data of the linearisation in the solver. One object per solve.
+class JFOSolver
+{
+public:
+  using VectorType = dealii::TrilinosWrappers::MPI::Vector;
+
+  /// `flow_scale`: the size of the full-film right-hand side, the scale of the mass residual.
+  JFOSolver(ReynoldsSolver &solver, double flow_scale);
+  /// Throws std::runtime_error if the iteration does not converge.
+  void solve();
+
+private:
+  /// Cell matrices A, G, F (state independent): once per solve, reused by every iteration.
+  void compute_cell_matrices();
+  /// Assemble the residual (and the reduced Newton system) at (a, v); returns the merit
+  /// 1/2 (|R|^2 + |phi|^2). `active_set_step`: the linear system of a fixed cavitated set.
+  double assemble(const VectorType &a, const VectorType &v, bool with_jacobian,
+                  bool active_set_step = false);
+  /// Start from the converged state of the mesh twice as coarse, else the clipped full film.
+  void warm_start();
+  /// Start values from the mesh-sequencing solver (a coarse ReynoldsSolver with a copy of the
+  /// settings); false if it fails or its mesh does not cover this one.
+  bool coarse_start();
+  /// Largest |phi(a_j, v_j)| over the unconstrained dofs.
+  double complementarity(const VectorType &a, const VectorType &v) const;
+  /// Newton direction (da, dv) of the current Jacobian: factorise, solve, recover.
+  void newton_direction();
+  /// (da, dv) from the reduced unknown w.
+  void recover();
+  /// Active-set polish from the set of the current iterate; true if it found the exact solution
+  /// (then it is the current iterate).
+  bool polish();
+  /// Watchdog bookkeeping and the step along (da, dv): projected full step or backtracking.
+  void step(double merit);
+  /// Pressure, void fraction and linearisation data into the solver.
+  void store_solution();
+
+  ReynoldsSolver &s;
+  const double flow_scale;
+  std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
+  std::vector<dealii::Vector<double>> cell_F;
+
+  VectorType a_owned, v_owned, a, v, residual, newton_rhs, w, da, dv, trial_a, trial_v, ta, tv;
+  VectorType best_a, best_v;
+  double best_merit;
+  unsigned int steps_without_progress = 0;
+  bool monotone = false;
+  unsigned int active_set_rounds = 0;
+};
+
+} // namespace sealfe

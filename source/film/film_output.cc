@@ -1,0 +1,118 @@
+#include <sealfe/film/film_output.h>
+#include <sealfe/film/reynolds_solver.h>
+
+#include <deal.II/base/utilities.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <fstream>
+
+namespace sealfe
+{
+using namespace dealii;
+
+namespace
+{
+/// Film thickness and volume flux q = -h^3/(12 mu) grad p + h u_mean at the output points.
+class FilmPostprocessor : public DataPostprocessor<2>
+{
+public:
+  explicit FilmPostprocessor(std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film)
+      : film(std::move(film))
+  {
+  }
+  void evaluate_scalar_field(const DataPostprocessorInputs::Scalar<2> &in,
+                             std::vector<Vector<double>> &out) const override
+  {
+    for (unsigned int q = 0; q < in.evaluation_points.size(); ++q)
+    {
+      // q = -K grad p + c: the full-film flux (in a JFO cavity the Couette part carries the
+      // liquid fraction: multiply c by liquid_fraction there; the pressure part is zero).
+      const ReynoldsSolver::LocalFilm f = film(in.evaluation_points[q]);
+      const Tensor<1, 2> flux = -(f.K * in.solution_gradients[q]) + f.c;
+      out[q](0) = f.h;
+      out[q](1) = flux[0];
+      out[q](2) = flux[1];
+      out[q](3) = f.h_T;
+      out[q](4) = f.phi_r;
+      out[q](5) = f.phi_theta;
+      out[q](6) = f.phi_s;
+      out[q](7) = f.contact_pressure;
+    }
+  }
+  std::vector<std::string> get_names() const override
+  {
+    return {"film_thickness",
+            "volume_flux",
+            "volume_flux",
+            "expected_gap",
+            "pressure_flow_factor_r",
+            "pressure_flow_factor_theta",
+            "shear_flow_factor",
+            "contact_pressure"};
+  }
+  std::vector<DataComponentInterpretation::DataComponentInterpretation>
+  get_data_component_interpretation() const override
+  {
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
+        8, DataComponentInterpretation::component_is_scalar);
+    kinds[1] = kinds[2] = DataComponentInterpretation::component_is_part_of_vector;
+    return kinds;
+  }
+  UpdateFlags get_needed_update_flags() const override
+  {
+    return update_values | update_gradients | update_quadrature_points;
+  }
+
+private:
+  std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film;
+};
+} // namespace
+
+std::string write_film_output(const ReynoldsSolver &s, const std::string &directory)
+{
+  FilmPostprocessor postprocessor([&s](const Point<2> &x) { return s.local_film(x); });
+  DataOut<2> data_out;
+  data_out.attach_dof_handler(s.dof_handler);
+  data_out.add_data_vector(s.locally_relevant_solution, "pressure");
+  data_out.add_data_vector(s.locally_relevant_solution, postprocessor);
+  // Liquid fraction s = 1 - v (1 in the full film; nodal, so exact at the nodes) and an
+  // indicator of the cavitated region (1 where p <= p_cav or s < 1).
+  TrilinosWrappers::MPI::Vector liquid(s.locally_owned_dofs, s.mpi_communicator),
+      cavitated(s.locally_owned_dofs, s.mpi_communicator);
+  const double p_tol = 1e-9 * std::max(s.pressure_scale, 1.0);
+  for (const auto i : s.locally_owned_dofs)
+  {
+    const double v = s.cavitation.model == Cavitation::jfo ? s.locally_relevant_void[i] : 0.0;
+    liquid[i] = 1 - v;
+    const bool below = s.cavitation.model != Cavitation::none &&
+                       s.locally_relevant_solution[i] <= s.cavitation.pressure + p_tol;
+    cavitated[i] = (v > 0 || below) ? 1.0 : 0.0;
+  }
+  liquid.compress(VectorOperation::insert);
+  cavitated.compress(VectorOperation::insert);
+  TrilinosWrappers::MPI::Vector liquid_ghosted(s.locally_owned_dofs, s.locally_relevant_dofs,
+                                               s.mpi_communicator),
+      cavitated_ghosted(s.locally_owned_dofs, s.locally_relevant_dofs, s.mpi_communicator);
+  liquid_ghosted = liquid;
+  cavitated_ghosted = cavitated;
+  data_out.add_data_vector(liquid_ghosted, "liquid_fraction");
+  data_out.add_data_vector(cavitated_ghosted, "cavitated");
+  Vector<float> subdomain(s.triangulation.n_active_cells());
+  subdomain = s.triangulation.locally_owned_subdomain();
+  data_out.add_data_vector(subdomain, "rank");
+  DataOutBase::VtkFlags flags;
+  flags.write_higher_order_cells = false;
+  data_out.set_flags(flags);
+  data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
+  const std::string pvtu =
+      data_out.write_vtu_with_pvtu_record(directory + "/", "solution", 0, s.mpi_communicator, 4, 1);
+  if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
+  {
+    std::ofstream pvd(directory + "/solution.pvd");
+    DataOutBase::write_pvd_record(pvd, {{0.0, pvtu}});
+  }
+  return "solution.pvd";
+}
+
+} // namespace sealfe

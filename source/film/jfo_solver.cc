@@ -1,0 +1,480 @@
+#include <sealfe/film/jfo_solver.h>
+#include <sealfe/film/reynolds_solver.h>
+
+#include <deal.II/base/mpi_remote_point_evaluation.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/numerics/vector_tools_evaluate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+using namespace dealii;
+
+namespace
+{
+/// Fischer-Burmeister function phi(a, b) = a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0,
+/// a b = 0. Returns phi and its partial derivatives (the generalised ones at the origin).
+struct FischerBurmeister
+{
+  double value, d_a, d_b;
+  FischerBurmeister(const double a, const double b)
+  {
+    const double rho = std::hypot(a, b);
+    value = a + b - rho;
+    d_a = rho > 0 ? 1 - a / rho : 1 - M_SQRT1_2;
+    d_b = rho > 0 ? 1 - b / rho : 1 - M_SQRT1_2;
+  }
+  /// Which unknown a node keeps in the reduced Newton system: the one whose complementarity
+  /// derivative is smaller is eliminated (d_a + d_b >= 2 - sqrt 2, so the kept one is >= 0.29).
+  bool keeps_pressure() const { return d_b >= d_a; }
+};
+} // namespace
+
+// JFO by Fischer-Burmeister-Newton-Schur (Woloszynski et al. 2015): nodal unknowns a_j = (p_j -
+// p_cav)/P and v_j, equations R_j(a, v) = 0 (mass balance, see above) and phi(a_j, v_j) = 0.
+// Each node's complementarity row is used to eliminate one of its two unknowns, so the Newton
+// system stays N x N with the sparsity of the pressure matrix; unlike the universal variable, a
+// node near the cavity boundary sees both its pressure and its void derivative, which is what
+// lets the active set settle. Globalised by backtracking on 1/2 (|R|^2 + |phi|^2).
+JFOSolver::JFOSolver(ReynoldsSolver &solver, const double flow_scale)
+    : s(solver), flow_scale(flow_scale), best_merit(std::numeric_limits<double>::max())
+{
+  const IndexSet &owned = s.locally_owned_dofs, &relevant = s.locally_relevant_dofs;
+  const MPI_Comm comm = s.mpi_communicator;
+  for (VectorType *x :
+       {&a_owned, &v_owned, &residual, &newton_rhs, &w, &da, &dv, &trial_a, &trial_v})
+    x->reinit(owned, comm);
+  for (VectorType *x : {&a, &v, &ta, &tv})
+    x->reinit(owned, relevant, comm);
+}
+
+void JFOSolver::compute_cell_matrices()
+{
+  // A, G, F do not depend on the state: computed once per solve and reused by every Newton
+  // iteration and line-search trial.
+  const unsigned int n = s.fe->n_dofs_per_cell();
+  const QGauss<2> quadrature(s.polynomial_degree + 2);
+  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  cell_A.resize(s.triangulation.n_active_cells());
+  cell_G.resize(s.triangulation.n_active_cells());
+  cell_F.resize(s.triangulation.n_active_cells());
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      const auto k = cell->active_cell_index();
+      cell_A[k].reinit(n, n);
+      cell_G[k].reinit(n, n);
+      cell_F[k].reinit(n);
+      s.cell_film_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
+    }
+}
+
+double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool with_jacobian,
+                           const bool active_set_step)
+{
+  const unsigned int n = s.fe->n_dofs_per_cell();
+  FullMatrix<double> J(n, n);
+  Vector<double> R(n), correction(n), local_a(n), local_v(n), local_p(n);
+  std::vector<types::global_dof_index> dofs(n);
+  const double P = s.pressure_scale;
+
+  if (with_jacobian)
+  {
+    s.system_matrix = 0;
+    newton_rhs = 0;
+  }
+  residual = 0;
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      const auto k = cell->active_cell_index();
+      const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
+      cell->get_dof_indices(dofs);
+      cell->get_dof_values(a, local_a);
+      cell->get_dof_values(v, local_v);
+      for (unsigned int j = 0; j < n; ++j)
+        local_p(j) = s.cavitation.pressure + P * local_a(j);
+      A.vmult(R, local_p);
+      R -= cell_F[k];
+      G.vmult_add(R, local_v);
+      R *= -1.0; // residual vector holds -R
+      s.homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
+      if (with_jacobian)
+      {
+        correction = 0;
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          const FischerBurmeister fb(local_a(j), local_v(j));
+          if (active_set_step)
+          {
+            // Active-set step: the node keeps the larger of its two unknowns, the other is set
+            // to zero (its current value moves to the right-hand side).
+            const bool keep_pressure = local_a(j) >= local_v(j);
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              J(i, j) = keep_pressure ? P * A(i, j) : G(i, j);
+              correction(i) += keep_pressure ? G(i, j) * local_v(j) : P * A(i, j) * local_a(j);
+            }
+          }
+          else if (fb.keeps_pressure())
+          {
+            const double ratio = fb.d_a / fb.d_b, shift = fb.value / fb.d_b;
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              J(i, j) = P * A(i, j) - G(i, j) * ratio;
+              correction(i) += G(i, j) * shift;
+            }
+          }
+          else
+          {
+            const double ratio = fb.d_b / fb.d_a, shift = fb.value / fb.d_a;
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              J(i, j) = G(i, j) - P * A(i, j) * ratio;
+              correction(i) += P * A(i, j) * shift;
+            }
+          }
+        }
+        R += correction;
+        s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
+                                                             newton_rhs);
+      }
+    }
+  residual.compress(VectorOperation::add);
+  if (with_jacobian)
+  {
+    s.system_matrix.compress(VectorOperation::add);
+    newton_rhs.compress(VectorOperation::add);
+  }
+  double fb_squared = 0;
+  for (const auto i : s.locally_owned_dofs)
+    if (!s.homogeneous_constraints.is_constrained(i))
+      fb_squared += Utilities::fixed_power<2>(FischerBurmeister(a[i], v[i]).value);
+  fb_squared = Utilities::MPI::sum(fb_squared, s.mpi_communicator);
+  const double r = residual.l2_norm() / flow_scale;
+  return 0.5 * (r * r + fb_squared);
+}
+void JFOSolver::warm_start()
+{
+  // Warm start. The Newton iteration moves the cavity boundary by about one cell per iteration
+  // (measured: 17, 63, 168, 400 iterations on 32, 64, 128, 256 cells around), so it starts from
+  // the converged JFO state of the mesh twice as coarse (recursively, mesh sequencing), evaluated
+  // at this mesh's nodes; on the coarsest mesh from the full film: a = (p - p_cav)/P where
+  // positive, else a = 0 with a small void.
+  for (const auto i : s.locally_owned_dofs)
+  {
+    const double d = (s.locally_relevant_solution[i] - s.cavitation.pressure) / s.pressure_scale;
+    a_owned[i] = std::max(d, 0.0);
+    v_owned[i] = d < 0 ? std::min(-d, 1e-3) : 0.0;
+  }
+  if (s.dof_handler.n_dofs() > 200 && s.mesh_parameters.can_coarsen(s.current_coarsening + 1))
+    coarse_start();
+  a_owned.compress(VectorOperation::insert);
+  v_owned.compress(VectorOperation::insert);
+  a = a_owned;
+  v = v_owned;
+  best_a = a_owned;
+  best_v = v_owned;
+}
+
+bool JFOSolver::coarse_start()
+{
+  // The coarse level solves the same physics: a copy of the whole settings (flow factors and
+  // contact included) and the same test hooks. Kept in the solver, so that its mesh is reused.
+  if (!s.coarse_solver)
+    s.coarse_solver = std::make_unique<ReynoldsSolver>(s.settings, s.mpi_communicator);
+  ReynoldsSolver &coarse = *s.coarse_solver;
+  coarse.settings = s.settings;
+  coarse.boundary_pressure = s.boundary_pressure;
+  coarse.source = s.source;
+  try
+  {
+    coarse.run(s.current_coarsening + 1);
+  }
+  catch (std::exception &)
+  {
+    return false; // fall back to the full-film start
+  }
+  std::map<types::global_dof_index, Point<2>> support;
+  DoFTools::map_dofs_to_support_points(*s.mapping, s.dof_handler, support);
+  std::vector<Point<2>> points;
+  std::vector<types::global_dof_index> indices;
+  for (const auto i : s.locally_owned_dofs)
+    if (!s.homogeneous_constraints.is_constrained(i))
+    {
+      indices.push_back(i);
+      points.push_back(support[i]);
+    }
+  Utilities::MPI::RemotePointEvaluation<2> cache;
+  const std::vector<double> pressure = VectorTools::point_values<1>(
+      *coarse.mapping, coarse.dof_handler, coarse.locally_relevant_solution, points, cache);
+  const std::vector<double> void_fraction =
+      VectorTools::point_values<1>(cache, coarse.dof_handler, coarse.locally_relevant_void);
+  s.coarse_iterations = coarse.cavitation_iterations + coarse.coarse_iterations;
+  if (!cache.all_points_found())
+    return false;
+  for (unsigned int k = 0; k < indices.size(); ++k)
+  {
+    a_owned[indices[k]] = std::max((pressure[k] - s.cavitation.pressure) / s.pressure_scale, 0.0);
+    v_owned[indices[k]] = std::clamp(void_fraction[k], 0.0, 1.0);
+  }
+  return true;
+}
+
+double JFOSolver::complementarity(const VectorType &aa, const VectorType &vv) const
+{
+  double m = 0;
+  for (const auto i : s.locally_owned_dofs)
+    if (!s.homogeneous_constraints.is_constrained(i))
+      m = std::max(m, std::abs(FischerBurmeister(aa[i], vv[i]).value));
+  return Utilities::MPI::max(m, s.mpi_communicator);
+}
+
+void JFOSolver::recover()
+{
+  // Newton update of (a, v) from the reduced unknown w (each node's eliminated unknown from its
+  // linearised complementarity row).
+  for (const auto i : s.locally_owned_dofs)
+  {
+    if (s.homogeneous_constraints.is_constrained(i))
+    {
+      da[i] = dv[i] = 0;
+      continue;
+    }
+    const FischerBurmeister fb(a_owned[i], v_owned[i]);
+    if (fb.keeps_pressure())
+    {
+      da[i] = w[i];
+      dv[i] = (-fb.value - fb.d_a * w[i]) / fb.d_b;
+    }
+    else
+    {
+      dv[i] = w[i];
+      da[i] = (-fb.value - fb.d_b * w[i]) / fb.d_a;
+    }
+  }
+  da.compress(VectorOperation::insert);
+  dv.compress(VectorOperation::insert);
+}
+
+void JFOSolver::newton_direction()
+{
+  s.factorize();
+  w = 0;
+  s.solve_linear_system(newton_rhs, w);
+  s.homogeneous_constraints.set_zero(w);
+  recover();
+}
+
+bool JFOSolver::polish()
+{
+  // Active-set polish: with the cavitated set fixed the discrete problem is linear. Starting
+  // from the set read off the current iterate (v > a), nodes whose solution is inconsistent
+  // (a < 0 on a pressure node, v < 0 on a cavitated one) switch set and the linear problem is
+  // solved again (primal-dual active set). A consistent solution is the exact JFO solution
+  // and ends the iteration at the next check; after a few unsuccessful rounds the polish is
+  // abandoned for this iteration and the FB-Newton step is taken.
+  VectorType set_a(a_owned), set_v(v_owned);
+  bool consistent = false;
+  for (unsigned int round = 0; round < 40 && !consistent; ++round)
+  {
+    ta = set_a;
+    tv = set_v;
+    assemble(ta, tv, true, true);
+    ++active_set_rounds;
+    s.factorize();
+    w = 0;
+    s.solve_linear_system(newton_rhs, w);
+    s.homogeneous_constraints.set_zero(w);
+    unsigned int flips = 0;
+    for (const auto i : s.locally_owned_dofs)
+    {
+      if (s.homogeneous_constraints.is_constrained(i))
+      {
+        trial_a[i] = set_a[i];
+        trial_v[i] = set_v[i];
+        continue;
+      }
+      const bool keep_pressure = set_a[i] >= set_v[i];
+      const double value = (keep_pressure ? set_a[i] : set_v[i]) + w[i];
+      // round-off of the linear solve (values are O(1)) is not a set change
+      trial_a[i] = keep_pressure ? std::max(value, 0.0) : 0.0;
+      trial_v[i] = keep_pressure ? 0.0 : std::max(value, 0.0);
+      if (value < -1e-12)
+      {
+        // switch set: a tiny value of the other unknown marks the new set
+        ++flips;
+        set_a[i] = keep_pressure ? 0.0 : 1e-300;
+        set_v[i] = keep_pressure ? 1e-300 : 0.0;
+      }
+      else
+      {
+        set_a[i] = trial_a[i];
+        set_v[i] = trial_v[i];
+      }
+    }
+    trial_a.compress(VectorOperation::insert);
+    trial_v.compress(VectorOperation::insert);
+    set_a.compress(VectorOperation::insert);
+    set_v.compress(VectorOperation::insert);
+    consistent = Utilities::MPI::sum(flips, s.mpi_communicator) == 0;
+  }
+  if (consistent)
+  {
+    a_owned = trial_a;
+    v_owned = trial_v;
+    a = a_owned;
+    v = v_owned;
+  }
+  return consistent;
+}
+
+void JFOSolver::step(double merit)
+{
+  // Projected full steps with a watchdog: the Newton step with a and v clipped at zero keeps
+  // the iterate feasible and moves the cavity boundary as far as the linearisation says, which
+  // the FB merit line search alone does not (it creeps when a full step trades mass residual
+  // for complementarity residual: 31 instead of 5 iterations on the default mesh). Such steps
+  // may raise the merit for a while; after 10 of them without a new best merit the iteration
+  // returns to the best iterate and continues with Armijo backtracking on the merit, along
+  // which the FB-Newton direction is a descent direction (so the method cannot cycle).
+  double step = 1;
+  if (merit < best_merit)
+  {
+    best_merit = merit;
+    best_a = a_owned;
+    best_v = v_owned;
+    steps_without_progress = 0;
+  }
+  else
+    ++steps_without_progress;
+  if (!monotone && steps_without_progress >= 10)
+  {
+    // Back to the best iterate; from there on plain FB-Newton with backtracking.
+    monotone = true;
+    a_owned = best_a;
+    v_owned = best_v;
+    a = a_owned;
+    v = v_owned;
+    merit = assemble(a, v, true);
+    newton_direction();
+  }
+  if (!monotone)
+  {
+    trial_a = a_owned;
+    trial_a.add(1.0, da);
+    trial_v = v_owned;
+    trial_v.add(1.0, dv);
+    for (const auto i : s.locally_owned_dofs)
+    {
+      trial_a[i] = std::max(static_cast<double>(trial_a[i]), 0.0);
+      trial_v[i] = std::max(static_cast<double>(trial_v[i]), 0.0);
+    }
+    trial_a.compress(VectorOperation::insert);
+    trial_v.compress(VectorOperation::insert);
+    da = trial_a;
+    da -= a_owned;
+    dv = trial_v;
+    dv -= v_owned;
+  }
+  else
+    for (unsigned int ls = 0; ls < 30; ++ls, step *= 0.5)
+    {
+      trial_a = a_owned;
+      trial_a.add(step, da);
+      trial_v = v_owned;
+      trial_v.add(step, dv);
+      ta = trial_a;
+      tv = trial_v;
+      if (assemble(ta, tv, false) <= (1 - 1e-4 * step) * merit)
+        break;
+    }
+  a_owned.add(step, da);
+  v_owned.add(step, dv);
+  a = a_owned;
+  v = v_owned;
+}
+
+void JFOSolver::solve()
+{
+  compute_cell_matrices();
+  warm_start();
+  unsigned int next_polish = 0, polish_gap = 1;
+  double mass_residual = 0, complementarity_residual = 0;
+  bool converged = false;
+  unsigned int it = 0;
+  for (; it < s.cavitation.maximum_iterations; ++it)
+  {
+    double merit = assemble(a, v, true);
+    mass_residual = residual.l2_norm() / flow_scale;
+    complementarity_residual = complementarity(a_owned, v_owned);
+    if (mass_residual < s.cavitation.tolerance && complementarity_residual < s.cavitation.tolerance)
+    {
+      converged = true;
+      break;
+    }
+    if (it >= next_polish)
+    {
+      const bool consistent = polish();
+      // After a failed polish the next one waits twice as long (it costs up to 40 solves).
+      next_polish = it + polish_gap;
+      polish_gap *= 2;
+      if (consistent)
+        continue;
+      merit = assemble(a, v, true);
+    }
+    newton_direction();
+    step(merit);
+  }
+  // Every linearised solve counts: FB-Newton steps and active-set rounds.
+  s.cavitation_iterations = it + active_set_rounds;
+  s.cavitation_residual = std::max(mass_residual, complementarity_residual);
+  if (!converged)
+  {
+    std::ostringstream m;
+    m << "Cavitation (jfo): no convergence in " << s.cavitation.maximum_iterations
+      << " Newton iterations (relative mass residual " << mass_residual
+      << ", complementarity residual " << complementarity_residual << ", tolerance "
+      << s.cavitation.tolerance << "); refine the mesh or raise Cavitation/Maximum iterations";
+    throw std::runtime_error(m.str());
+  }
+  s.last_iterations += it;
+  store_solution();
+}
+
+void JFOSolver::store_solution()
+{
+  // The last assembly built the Jacobian at the solution: factorise it for linearized_loads,
+  // and keep which unknown each node kept with its complementarity derivatives.
+  s.factorize();
+  s.jfo_keep_pressure.reinit(s.locally_owned_dofs, s.mpi_communicator);
+  s.jfo_elimination.reinit(s.locally_owned_dofs, s.mpi_communicator);
+  for (const auto i : s.locally_owned_dofs)
+  {
+    const FischerBurmeister fb(a_owned[i], v_owned[i]);
+    s.jfo_keep_pressure[i] = fb.keeps_pressure() ? 1.0 : 0.0;
+    s.jfo_elimination[i] = fb.keeps_pressure() ? -fb.d_a / fb.d_b : -fb.d_b / fb.d_a;
+  }
+  s.jfo_keep_pressure.compress(VectorOperation::insert);
+  s.jfo_elimination.compress(VectorOperation::insert);
+
+  VectorType p(s.locally_owned_dofs, s.mpi_communicator);
+  for (const auto i : s.locally_owned_dofs)
+    p[i] = s.cavitation.pressure + s.pressure_scale * a_owned[i];
+  p.compress(VectorOperation::insert);
+  s.locally_relevant_solution = p;
+  s.locally_relevant_void = v_owned;
+}
+
+} // namespace sealfe
