@@ -1,5 +1,6 @@
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/numerics/minimisation.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
 #include <sstream>
@@ -10,31 +11,37 @@ namespace sealfe
 void FilmThickness::declare_parameters(dealii::ParameterHandler &prm)
 {
   using dealii::Patterns::Double;
+  const FilmThickness defaults; // the member initialisers are the defaults
   prm.enter_subsection("Geometry");
-  prm.declare_entry("Inner radius", "0.0355", Double(0), "Inner radius ri of the sealing dam (m).");
-  prm.declare_entry("Outer radius", "0.0408", Double(0), "Outer radius ro of the sealing dam (m).");
-  prm.declare_entry("Clearance", "1e-6", Double(),
+  prm.declare_entry("Inner radius", numerics::to_prm_string(defaults.inner_radius), Double(0),
+                    "Inner radius ri of the sealing dam (m).");
+  prm.declare_entry("Outer radius", numerics::to_prm_string(defaults.outer_radius), Double(0),
+                    "Outer radius ro of the sealing dam (m).");
+  prm.declare_entry("Clearance", numerics::to_prm_string(defaults.clearance), Double(),
                     "Centreline clearance C0 (m): the film at r = ri on the tilt's neutral line.");
-  prm.declare_entry("Coning", "1e-3", Double(),
+  prm.declare_entry("Coning", numerics::to_prm_string(defaults.coning), Double(),
                     "Coning beta (rad): h grows by beta*(r - ri); positive opens outward.");
-  prm.declare_entry("Tilt", "0", Double(0), "Relative tilt gamma of the faces (rad).");
-  prm.declare_entry("Tilt angle", "0", Double(),
+  prm.declare_entry("Tilt", numerics::to_prm_string(defaults.tilt), Double(0),
+                    "Relative tilt gamma of the faces (rad).");
+  prm.declare_entry("Tilt angle", numerics::to_prm_string(defaults.tilt_angle), Double(),
                     "Angle psi (rad) at which the tilt makes the film thickest.");
-  prm.declare_entry("Wave amplitude", "0", Double(), "Circumferential waviness amplitude A_w (m).");
-  prm.declare_entry("Wave number", "0", Double(0), "Number of waves n_w per revolution.");
-  prm.declare_entry("Wave phase", "0", Double(),
+  prm.declare_entry("Wave amplitude", numerics::to_prm_string(defaults.wave_amplitude), Double(),
+                    "Circumferential waviness amplitude A_w (m).");
+  prm.declare_entry("Wave number", numerics::to_prm_string(defaults.wave_number), Double(0),
+                    "Number of waves n_w per revolution.");
+  prm.declare_entry("Wave phase", numerics::to_prm_string(defaults.wave_phase), Double(),
                     "Angle theta_w (rad) of a waviness crest: A_w cos(n_w (theta - theta_w)).");
   prm.declare_entry(
-      "Axial offset", "0", Double(),
+      "Axial offset", numerics::to_prm_string(defaults.axial_offset), Double(),
       "Axial displacement z (m) of the flexible ring from the set point (adds to h).");
   prm.leave_subsection();
 
   prm.enter_subsection("Squeeze motion");
-  prm.declare_entry("Axial velocity", "0", Double(),
+  prm.declare_entry("Axial velocity", numerics::to_prm_string(defaults.axial_velocity), Double(),
                     "Axial velocity dz/dt (m/s) of the flexible ring (opens the film if > 0).");
-  prm.declare_entry("Tilt rate x", "0", Double(),
+  prm.declare_entry("Tilt rate x", numerics::to_prm_string(defaults.tilt_rate_x), Double(),
                     "Rate (rad/s) of the flexible ring's tilt about the x axis (w = tilt_x y).");
-  prm.declare_entry("Tilt rate y", "0", Double(),
+  prm.declare_entry("Tilt rate y", numerics::to_prm_string(defaults.tilt_rate_y), Double(),
                     "Rate (rad/s) of the flexible ring's tilt about the y axis (w = -tilt_y x).");
   prm.leave_subsection();
 }

@@ -1,4 +1,5 @@
 #include <sealfe/film/operating_conditions.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <cmath>
 #include <sstream>
@@ -9,18 +10,22 @@ namespace sealfe
 void OperatingConditions::declare_parameters(dealii::ParameterHandler &prm)
 {
   using dealii::Patterns::Double;
+  const OperatingConditions defaults; // the member initialisers are the defaults
   prm.enter_subsection("Operating conditions");
-  prm.declare_entry("Inner pressure", "0", Double(), "Pressure pi (Pa) on r = ri.");
-  prm.declare_entry("Outer pressure", "4e5", Double(), "Pressure po (Pa) on r = ro.");
-  prm.declare_entry("Viscosity", "1.2e-3", Double(), "Dynamic viscosity mu (Pa s).");
-  prm.declare_entry("Rotor speed", "1000", Double(),
+  prm.declare_entry("Inner pressure", numerics::to_prm_string(defaults.inner_pressure), Double(),
+                    "Pressure pi (Pa) on r = ri.");
+  prm.declare_entry("Outer pressure", numerics::to_prm_string(defaults.outer_pressure), Double(),
+                    "Pressure po (Pa) on r = ro.");
+  prm.declare_entry("Viscosity", numerics::to_prm_string(defaults.viscosity), Double(),
+                    "Dynamic viscosity mu (Pa s).");
+  prm.declare_entry("Rotor speed", numerics::to_prm_string(defaults.rotor_speed), Double(),
                     "Angular speed (rad/s, positive in +theta) of the rotor face; the film shape "
                     "is fixed in the frame of the solve.");
-  prm.declare_entry("Stator speed", "0", Double(),
+  prm.declare_entry("Stator speed", numerics::to_prm_string(defaults.stator_speed), Double(),
                     "Angular speed (rad/s) of the other face (non-zero for two rotating rings, "
                     "FMRR).");
-  prm.declare_entry("Reference pressure", "0", Double(),
-                    "p_ref (Pa) subtracted from the pressure in the force and moments.");
+  prm.declare_entry("Reference pressure", numerics::to_prm_string(defaults.reference_pressure),
+                    Double(), "p_ref (Pa) subtracted from the pressure in the force and moments.");
   prm.leave_subsection();
 }
 

@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -73,6 +74,24 @@ std::vector<double> parse_number_list(const std::string &text, const std::string
     if (values[i] == values[i - 1])
       fail("repeats the value " + std::to_string(values[i]));
   return values;
+}
+
+std::string to_prm_string(const double value)
+{
+  char buffer[64];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  std::string text = error == std::errc() ? std::string(buffer, end) : std::to_string(value);
+  // "4e+05" -> "4e5", "1e-06" -> "1e-6": the way people type exponents in a prm file
+  const auto e = text.find('e');
+  if (e != std::string::npos)
+  {
+    std::string exponent = text.substr(e + 1);
+    const bool negative = exponent[0] == '-';
+    exponent.erase(0, exponent.find_first_not_of("+-"));
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    text = text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+  }
+  return text;
 }
 
 } // namespace sealfe::numerics

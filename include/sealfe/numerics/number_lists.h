@@ -17,4 +17,8 @@ double parse_finite_number(const std::string &text, const std::string &entry);
 /// std::runtime_error naming `entry` for anything else.
 std::vector<double> parse_number_list(const std::string &text, const std::string &entry);
 
+/// The shortest text that reads back as exactly `value` ("0.0355", "1e-06"): how a default held
+/// in a class's member initialiser is declared as a prm default without writing it twice.
+std::string to_prm_string(double value);
+
 } // namespace sealfe::numerics
