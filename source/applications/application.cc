@@ -10,6 +10,7 @@
 #include <sealfe/dynamics/seal_dynamics.h>
 #include <sealfe/applications/stability.h>
 #include <sealfe/applications/table_sweep.h>
+#include <sealfe/applications/transient.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
@@ -114,6 +115,14 @@ std::vector<SubCommand> sub_commands()
          output::make_directory(dir);
          return annular::run(prm, dir);
        }},
+      {"equilibrium", "axial operating point under the closing force -> summary.json", true,
+       false, equilibrium::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       { return equilibrium::run(prm, dir); }},
+      {"transient", "start-up/run/shut-down transient (Green 2002) -> CSV, PNG", true, false,
+       transient::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       { return transient::run(prm, dir); }},
   };
 }
 

@@ -111,6 +111,7 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Contact threshold", "0.01", Double(0),
                     "In contact while the contact force exceeds this fraction of the closing "
                     "force (lift-off / touch-down times in summary.json).");
+  prm.declare_entry("Order", "3", Integer(2, 5), "Order of ARKode's implicit (DIRK) method.");
   prm.declare_entry("Film level", "closed form", Selection(film_level_pattern()),
                     "closed form: narrow seal (level 0). table and finite element are not "
                     "available in this version of the transient.");
@@ -129,6 +130,7 @@ void TransientSettings::parse_parameters(dealii::ParameterHandler &prm)
   minimum_step = prm.get_double("Minimum step");
   maximum_steps = prm.get_integer("Maximum steps per output");
   contact_threshold = prm.get_double("Contact threshold");
+  order = prm.get_integer("Order");
   prm.leave_subsection();
 }
 

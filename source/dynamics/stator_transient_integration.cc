@@ -51,7 +51,7 @@ StatorTransient::Result StatorTransient::run() const
 
   const double dt0 = std::min(1e-6, settings.output_interval);
   dealii::SUNDIALS::ARKode<Vec>::AdditionalData data(
-      0.0, settings.end_time, dt0, settings.output_interval, settings.minimum_step, 5, 10, false,
+      0.0, settings.end_time, dt0, settings.output_interval, settings.minimum_step, settings.order, 10, false,
       false, true, 3, settings.absolute_tolerance, settings.relative_tolerance);
   dealii::SUNDIALS::ARKode<Vec> ode(data);
   ode.implicit_function = scaled_rate;
@@ -60,6 +60,7 @@ StatorTransient::Result StatorTransient::run() const
   dealii::FullMatrix<double> J(n, n), A(n, n);
   ode.jacobian_times_setup = [&](const double t, const Vec &y, const Vec &fy) -> int
   {
+    ++result.jacobian_setups;
     Vec yp(y), fp(n);
     for (unsigned int j = 0; j < n; ++j)
     {
@@ -136,6 +137,16 @@ StatorTransient::Result StatorTransient::run() const
   if (memory)
     ARKStepGetNumSteps(memory, &steps);
   result.steps = steps;
+  if (memory)
+  {
+    long fails = 0, conv = 0, setups = 0;
+    ARKStepGetNumErrTestFails(memory, &fails);
+    ARKStepGetNumNonlinSolvConvFails(memory, &conv);
+    ARKStepGetNumLinSolvSetups(memory, &setups);
+    result.error_test_failures = fails;
+    result.convergence_failures = conv;
+    (void)setups;
+  }
   result.film_evaluations = evaluations;
   return result;
 }

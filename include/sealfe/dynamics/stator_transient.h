@@ -60,6 +60,7 @@ struct TransientSettings
   double minimum_step = 1e-12;
   unsigned long maximum_steps = 2000000;
   double contact_threshold = 0.01; ///< in contact: contact force > this fraction of F_cls
+  unsigned int order = 3;          ///< ARKode DIRK order
 
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
@@ -116,6 +117,7 @@ public:
     std::string stop_reason;
     unsigned long film_evaluations = 0;
     unsigned long steps = 0;
+    unsigned long error_test_failures = 0, convergence_failures = 0, jacobian_setups = 0;
   };
   /// Integrates from the initial state to the end time. A failure of the integrator (step size
   /// collapse, film out of range) stops the run: the samples so far are kept, complete = false.
