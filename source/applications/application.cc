@@ -115,8 +115,8 @@ std::vector<SubCommand> sub_commands()
          output::make_directory(dir);
          return annular::run(prm, dir);
        }},
-      {"equilibrium", "axial operating point under the closing force -> summary.json", true,
-       false, equilibrium::declare_parameters,
+      {"equilibrium", "axial operating point under the closing force -> summary.json", true, false,
+       equilibrium::declare_parameters,
        [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
        { return equilibrium::run(prm, dir); }},
       {"transient", "start-up/run/shut-down transient (Green 2002) -> CSV, PNG", true, false,

@@ -35,9 +35,8 @@ std::unique_ptr<ClosedFormTransientFilm> make_film(dealii::ParameterHandler &prm
                              "half-sommerfeld only, not reynolds or jfo");
   NarrowSealQuadrature quadrature;
   quadrature.parse_parameters(prm);
-  return std::make_unique<ClosedFormTransientFilm>(seal.geometry, seal.conditions,
-                                                   cavitation.model, quadrature,
-                                                   cavitation.pressure);
+  return std::make_unique<ClosedFormTransientFilm>(seal.geometry, seal.conditions, cavitation.model,
+                                                   quadrature, cavitation.pressure);
 }
 
 void declare_case(dealii::ParameterHandler &prm)
@@ -57,7 +56,10 @@ void declare_case(dealii::ParameterHandler &prm)
 
 namespace equilibrium
 {
-void declare_parameters(dealii::ParameterHandler &prm) { declare_case(prm); }
+void declare_parameters(dealii::ParameterHandler &prm)
+{
+  declare_case(prm);
+}
 
 nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
 {
@@ -73,8 +75,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   const SealEquilibrium eq = solve_equilibrium(seal, *film, state);
   state.axial_offset = eq.axial_offset;
   state.coning = eq.coning;
-  const FilmCoefficients k =
-      central_difference_coefficients(*film, state, eq.contact.min_film, seal.geometry.outer_radius);
+  const FilmCoefficients k = central_difference_coefficients(*film, state, eq.contact.min_film,
+                                                             seal.geometry.outer_radius);
   // contact stiffness: central difference of the contact force in z
   const double dz = 1e-3 * eq.contact.min_film;
   FilmState up = state, down = state;
@@ -148,11 +150,11 @@ std::string csv_text(const std::vector<TransientSample> &rows)
   for (const auto &s : rows)
     out << s.time << "," << s.rotor_speed << "," << s.inner_pressure << "," << s.outer_pressure
         << "," << s.axial_offset << "," << s.stator_tilt() << "," << s.stator_precession() << ","
-        << s.relative_tilt << "," << s.coning << "," << s.min_film << ","
-        << s.min_film_over_sigma << "," << s.heating_film << "," << s.film_force << ","
-        << s.contact_force << "," << s.closing_force << "," << s.film_moment_x << ","
-        << s.film_moment_y << "," << s.contact_moment_x << "," << s.contact_moment_y << ","
-        << s.leakage_inner << "," << s.friction_torque << "," << s.leaked_volume << "\n";
+        << s.relative_tilt << "," << s.coning << "," << s.min_film << "," << s.min_film_over_sigma
+        << "," << s.heating_film << "," << s.film_force << "," << s.contact_force << ","
+        << s.closing_force << "," << s.film_moment_x << "," << s.film_moment_y << ","
+        << s.contact_moment_x << "," << s.contact_moment_y << "," << s.leakage_inner << ","
+        << s.friction_torque << "," << s.leaked_volume << "\n";
   return out.str();
 }
 
@@ -250,8 +252,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   if (!result.complete)
     s["stop_reason"] = result.stop_reason;
   s["end_time"] = result.samples.empty() ? 0.0 : result.samples.back().time;
-  s["final_state"] = result.samples.empty() ? nlohmann::json(nullptr)
-                                            : sample_json(result.samples.back());
+  s["final_state"] =
+      result.samples.empty() ? nlohmann::json(nullptr) : sample_json(result.samples.back());
   s["film_model"] = film->description();
   s["film_evaluations"] = result.film_evaluations;
   s["steps"] = result.steps;
@@ -276,8 +278,10 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   {
     s["sub_command"] = "transient";
     output::write_summary(dir, s);
-    throw std::runtime_error("transient: " + result.stop_reason + "; the rows computed so far "
-                             "are in " + dir + "/transient.csv, summary.json says complete = false");
+    throw std::runtime_error("transient: " + result.stop_reason +
+                             "; the rows computed so far "
+                             "are in " +
+                             dir + "/transient.csv, summary.json says complete = false");
   }
   std::cout << "sealfe transient: " << result.samples.size() << " rows, " << result.steps
             << " steps, " << result.film_evaluations << " film evaluations\n";

@@ -9,8 +9,8 @@ ClosedFormTransientFilm::ClosedFormTransientFilm(const FilmThickness &geometry,
                                                  const Cavitation cavitation,
                                                  const NarrowSealQuadrature &quadrature,
                                                  const double cavitation_pressure)
-  : geometry_(geometry), conditions_(conditions), cavitation_(cavitation),
-    cavitation_pressure_(cavitation_pressure), quadrature_(quadrature)
+    : geometry_(geometry), conditions_(conditions), cavitation_(cavitation),
+      cavitation_pressure_(cavitation_pressure), quadrature_(quadrature)
 {
 }
 
@@ -32,14 +32,12 @@ FilmLoads ClosedFormTransientFilm::loads(const FilmState &state) const
 
 FilmCoefficients ClosedFormTransientFilm::coefficients(const FilmState &state) const
 {
-  return central_difference_coefficients(*this, state,
-                                         state.apply(geometry_).minimum().value,
+  return central_difference_coefficients(*this, state, state.apply(geometry_).minimum().value,
                                          geometry_.outer_radius);
 }
 
-FilmCoefficients central_difference_coefficients(const FilmForceModel &film,
-                                                 const FilmState &state, const double min_film,
-                                                 const double outer_radius)
+FilmCoefficients central_difference_coefficients(const FilmForceModel &film, const FilmState &state,
+                                                 const double min_film, const double outer_radius)
 {
   FilmCoefficients k;
   k.level = static_cast<int>(film.level());

@@ -15,12 +15,12 @@ double heating_film(const FlexibleStatorSeal &seal, const FilmState &state)
   const FaceContact::Loads c = seal.contact.loads(state.apply(seal.geometry));
   switch (seal.thermal.film)
   {
-    case ThermalConing::Film::minimum:
-      return std::max(c.min_film, 0.1 * seal.contact.composite_roughness());
-    case ThermalConing::Film::centerline:
-      return seal.geometry.clearance + state.axial_offset;
-    default:
-      return c.heating_film;
+  case ThermalConing::Film::minimum:
+    return std::max(c.min_film, 0.1 * seal.contact.composite_roughness());
+  case ThermalConing::Film::centerline:
+    return seal.geometry.clearance + state.axial_offset;
+  default:
+    return c.heating_film;
   }
 }
 } // namespace
@@ -52,9 +52,8 @@ SealEquilibrium solve_equilibrium(const FlexibleStatorSeal &seal, const FilmForc
   state.tilt_x = state.tilt_y = 0;
   state.axial_velocity = state.tilt_rate_x = state.tilt_rate_y = 0;
   const double C0 = seal.geometry.clearance, sigma = seal.contact.composite_roughness();
-  const double closing = seal.closing.value(seal.geometry.inner_radius,
-                                            seal.geometry.outer_radius, state.inner_pressure,
-                                            state.outer_pressure);
+  const double closing = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
+                                            state.inner_pressure, state.outer_pressure);
   SealEquilibrium eq;
   eq.closing_force = closing;
   auto balance = [&](const double z)
@@ -73,8 +72,8 @@ SealEquilibrium solve_equilibrium(const FlexibleStatorSeal &seal, const FilmForc
   {
     std::ostringstream s;
     s << "equilibrium: the closing force " << closing << " N closes the faces below any film: "
-      << "film + contact at a film of sigma/2 carry only " << closing + g_prev
-      << " N (short by " << -g_prev << " N)";
+      << "film + contact at a film of sigma/2 carry only " << closing + g_prev << " N (short by "
+      << -g_prev << " N)";
     throw std::runtime_error(s.str());
   }
   double lo = NAN, hi = NAN, g_lo = 0, g_hi = 0;

@@ -35,10 +35,10 @@ void FaceContact::parse_parameters(dealii::ParameterHandler &prm, const double i
   const bool on = prm.get("Model") == "gw-ceb";
   const unsigned int nr = prm.get_integer("Radial points"), nt = prm.get_integer("Angular points");
   prm.leave_subsection();
-  *this = FaceContact(AsperityContact(on ? AsperityContact::Model::gw_ceb
-                                         : AsperityContact::Model::none,
-                                      c.parameters()),
-                      inner_radius, outer_radius, nr, nt);
+  *this = FaceContact(
+      AsperityContact(on ? AsperityContact::Model::gw_ceb : AsperityContact::Model::none,
+                      c.parameters()),
+      inner_radius, outer_radius, nr, nt);
   if (on)
     contact_.validate();
 }
@@ -46,7 +46,7 @@ void FaceContact::parse_parameters(dealii::ParameterHandler &prm, const double i
 FaceContact::FaceContact(const AsperityContact &contact, const double inner_radius,
                          const double outer_radius, const unsigned int radial_points,
                          const unsigned int angular_points)
-  : contact_(contact), ri(inner_radius), ro(outer_radius)
+    : contact_(contact), ri(inner_radius), ro(outer_radius)
 {
   build(radial_points, angular_points);
 }
@@ -85,10 +85,10 @@ FaceContact::Loads FaceContact::loads(const FilmThickness &film) const
     for (unsigned int i = 0; i < r_.size(); ++i)
     {
       const double r = r_[i], dA = r * wr_[i] * wtheta_;
-      const double h = film.clearance + film.axial_offset + film.coning * (r - ri) +
-                       film.tilt * r * std::cos(theta_[j] - film.tilt_angle) +
-                       film.wave_amplitude *
-                           std::cos(film.wave_number * (theta_[j] - film.wave_phase));
+      const double h =
+          film.clearance + film.axial_offset + film.coning * (r - ri) +
+          film.tilt * r * std::cos(theta_[j] - film.tilt_angle) +
+          film.wave_amplitude * std::cos(film.wave_number * (theta_[j] - film.wave_phase));
       out.min_film = std::min(out.min_film, h);
       r2 += r * r * dA;
       r2_over_h += r * r * dA / std::max(h, floor);

@@ -66,10 +66,16 @@ void OperatingRamps::declare_parameters(dealii::ParameterHandler &prm)
   for (int i = 0; i < 3; ++i)
   {
     const std::string n = names[i];
-    auto str = [](double v) { std::ostringstream s; s << v; return s.str(); };
+    auto str = [](double v)
+    {
+      std::ostringstream s;
+      s << v;
+      return s.str();
+    };
     prm.declare_entry(n + " rest value", str(ramps[i]->rest), Double(),
-                      n + " (" + units[i] + ") before t = 0 and after t3 (Green 2002 Eq. 17 "
-                      "has 0; a pressure drop ramped from zero is rest = the other pressure).");
+                      n + " (" + units[i] +
+                          ") before t = 0 and after t3 (Green 2002 Eq. 17 "
+                          "has 0; a pressure drop ramped from zero is rest = the other pressure).");
     prm.declare_entry(n + " steady value", str(ramps[i]->steady), Double(),
                       n + " (" + units[i] + ") between t1 and t2 (V of Eq. 17).");
     prm.declare_entry(n + " t1", str(ramps[i]->t1), Double(0), "End of the ramp up (s).");

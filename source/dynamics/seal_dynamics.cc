@@ -1,5 +1,5 @@
-#include <sealfe/coefficients/coefficient_table.h>
 #include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/coefficients/coefficient_table.h>
 #include <sealfe/dynamics/seal_dynamics.h>
 
 #include <deal.II/lac/lapack_full_matrix.h>
@@ -275,7 +275,8 @@ SecondOrderSystem AngularSealDynamics::matrices(const double rotor_speed,
     K(o + 1, o + 1) += r.support_stiffness;
     C(o, o) += r.support_damping;
     C(o + 1, o + 1) += r.support_damping;
-    // gyroscopic: I_t t_ddot_x + J omega t_dot_y, I_t t_ddot_y - J omega t_dot_x (Wileman & Green Eq. 2)
+    // gyroscopic: I_t t_ddot_x + J omega t_dot_y, I_t t_ddot_y - J omega t_dot_x (Wileman & Green
+    // Eq. 2)
     C(o, o + 1) += r.polar_inertia * omega;
     C(o + 1, o) -= r.polar_inertia * omega;
     // rotating support damping: + omega d_rot t_y in x, - omega d_rot t_x in y
@@ -348,8 +349,9 @@ AngularSealDynamics::hurwitz_polynomial_by_product(const double rotor_speed,
     throw std::runtime_error("Seal dynamics: the Routh-Hurwitz route needs an isotropic film "
                              "tilt block without cross-coupled damping; use Criterion = "
                              "eigenvalues");
-  // Complex equation of ring n (Wileman & Green Eq. 3): I lambda^2 + (d - i J omega) lambda + (k - i D)
-  // with d = d11 + d_s, k = k11 + k_s, D = c + omega d_rot; coupling -(d11 lambda + k11 - i c).
+  // Complex equation of ring n (Wileman & Green Eq. 3): I lambda^2 + (d - i J omega) lambda + (k -
+  // i D) with d = d11 + d_s, k = k11 + k_s, D = c + omega d_rot; coupling -(d11 lambda + k11 - i
+  // c).
   auto ring_poly = [&](const RingProperties &r, const double omega)
   {
     return Poly{cplx(t.k + r.support_stiffness, -(t.c + omega * r.rotating_damping)),
@@ -388,8 +390,8 @@ std::vector<double> AngularSealDynamics::hurwitz_polynomial(const double rotor_s
     throw std::runtime_error("Seal dynamics: the Routh-Hurwitz route needs an isotropic film "
                              "tilt block without cross-coupled damping; use Criterion = "
                              "eigenvalues");
-  // Wileman & Green Appendix B, element 2 = stator ring, element 1 = rotor ring. The printed a_2 has
-  // "d k11 D11" in its last factor where 2 k11 D11 belongs (the same factor appears correctly
+  // Wileman & Green Appendix B, element 2 = stator ring, element 1 = rotor ring. The printed a_2
+  // has "d k11 D11" in its last factor where 2 k11 D11 belongs (the same factor appears correctly
   // in a_3, a_1 and a_0).
   const double I2 = stator.transverse_inertia, I1 = rotor.transverse_inertia;
   const double J2w2 = stator.polar_inertia * stator_speed, J1w1 = rotor.polar_inertia * rotor_speed;
@@ -522,8 +524,9 @@ std::vector<double> AngularSealDynamics::undamped_threshold_speeds(const SweptRi
   const FilmCoefficients fc = film(fixed_speed, fixed_speed);
   const TiltFilm t = tilt_film(fc);
   if (std::abs(t.c - fixed_speed * t.d) > 1e-9 * std::abs(fixed_speed * t.d) + 1e-300)
-    throw std::runtime_error("Seal dynamics: the closed-form threshold (Wileman & Green Eq. 17) needs "
-                             "a film with cross-coupled stiffness (omega1 + omega2)/2 d11");
+    throw std::runtime_error(
+        "Seal dynamics: the closed-form threshold (Wileman & Green Eq. 17) needs "
+        "a film with cross-coupled stiffness (omega1 + omega2)/2 d11");
   // Polynomials in psi (lowest power first); the swept speed is 2 psi - fixed_speed.
   using RPoly = std::vector<double>;
   auto mul = [](const RPoly &a, const RPoly &b)
@@ -853,7 +856,8 @@ RingProperties parse_ring(dealii::ParameterHandler &prm, const std::string &name
 
 void SealDynamicsInput::declare_parameters(dealii::ParameterHandler &prm)
 {
-  // Defaults: Varney & Green (Varney & Green (2017)) Table 2 with delta = I_tr/I_pr = 2, chi = 0.5 mrad.
+  // Defaults: Varney & Green (Varney & Green (2017)) Table 2 with delta = I_tr/I_pr = 2, chi = 0.5
+  // mrad.
   RingProperties rotor_default, stator_default;
   rotor_default.transverse_inertia = 0.2;
   rotor_default.polar_inertia = 0.1;

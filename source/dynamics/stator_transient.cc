@@ -1,6 +1,6 @@
+#include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/dynamics/equilibrium.h>
 #include <sealfe/dynamics/stator_transient.h>
-#include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/film/cavitation.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -84,7 +84,8 @@ void RotorRunout::parse_parameters(dealii::ParameterHandler &prm)
 
 std::array<double, 2> RotorRunout::vector(const double shaft_angle) const
 {
-  // film_thickness.h: the film is thickest at psi with tilt_x = gamma sin psi, tilt_y = -gamma cos psi
+  // film_thickness.h: the film is thickest at psi with tilt_x = gamma sin psi, tilt_y = -gamma cos
+  // psi
   const double psi = shaft_angle + phase;
   return {{tilt * std::sin(psi), -tilt * std::cos(psi)}};
 }
@@ -103,7 +104,8 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
                     "given: Z(0) = Initial axial offset * C0, stator aligned with the rotor "
                     "(Green 2002: Z(0) = -0.65 C0, gamma_s(0) = gamma_r); rest equilibrium: Z(0) "
                     "from the axial balance at t = 0.");
-  prm.declare_entry("Initial axial offset", "-0.65", Double(), "Z(0)/C0 for Initial state = given.");
+  prm.declare_entry("Initial axial offset", "-0.65", Double(),
+                    "Z(0)/C0 for Initial state = given.");
   prm.declare_entry("Minimum step", "1e-12", Double(0),
                     "Smallest step (s); a step size collapse below it stops the run.");
   prm.declare_entry("Maximum steps per output", "200000", Integer(1),
@@ -195,7 +197,10 @@ double FlexibleStatorSeal::face_area() const
   return M_PI * (std::pow(geometry.outer_radius, 2) - std::pow(geometry.inner_radius, 2));
 }
 
-double TransientSample::stator_tilt() const { return std::hypot(stator_tilt_x, stator_tilt_y); }
+double TransientSample::stator_tilt() const
+{
+  return std::hypot(stator_tilt_x, stator_tilt_y);
+}
 double TransientSample::stator_precession() const
 {
   return std::atan2(stator_tilt_x, -stator_tilt_y);
@@ -215,7 +220,7 @@ struct StatorTransient::Evaluation
 
 StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForceModel &film,
                                  const TransientSettings &settings)
-  : seal(seal), film(film), settings(settings)
+    : seal(seal), film(film), settings(settings)
 {
   const double C0 = seal.geometry.clearance, ro = seal.geometry.outer_radius;
   const double rate = 1e3; // 1/s: velocities are scaled as displacements per ms

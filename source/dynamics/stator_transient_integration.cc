@@ -51,8 +51,8 @@ StatorTransient::Result StatorTransient::run() const
 
   const double dt0 = std::min(1e-6, settings.output_interval);
   dealii::SUNDIALS::ARKode<Vec>::AdditionalData data(
-      0.0, settings.end_time, dt0, settings.output_interval, settings.minimum_step, settings.order, 10, false,
-      false, true, 3, settings.absolute_tolerance, settings.relative_tolerance);
+      0.0, settings.end_time, dt0, settings.output_interval, settings.minimum_step, settings.order,
+      10, false, false, true, 3, settings.absolute_tolerance, settings.relative_tolerance);
   dealii::SUNDIALS::ARKode<Vec> ode(data);
   ode.implicit_function = scaled_rate;
 
@@ -110,7 +110,8 @@ StatorTransient::Result StatorTransient::run() const
   for (unsigned int i = 0; i < n; ++i)
     v[i] = y0[i] / scale[i];
   result.samples.push_back(sample(0, y0));
-  const unsigned long rows = std::llround(std::ceil(settings.end_time / settings.output_interval - 1e-9));
+  const unsigned long rows =
+      std::llround(std::ceil(settings.end_time / settings.output_interval - 1e-9));
   double t_reached = 0;
   for (unsigned long k = 1; k <= rows; ++k)
   {

@@ -34,7 +34,6 @@ private:
 
 /// Stiffness and damping of any FilmForceModel by central differences of its loads about
 /// `state` (steps: dz = 1e-3 of the min film, tilt dz / ro, rates: steps / 1 s... see .cc).
-FilmCoefficients central_difference_coefficients(const FilmForceModel &film,
-                                                 const FilmState &state, double min_film,
-                                                 double outer_radius);
+FilmCoefficients central_difference_coefficients(const FilmForceModel &film, const FilmState &state,
+                                                 double min_film, double outer_radius);
 } // namespace sealfe

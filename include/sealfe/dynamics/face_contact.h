@@ -21,12 +21,12 @@ class FaceContact
 public:
   struct Loads
   {
-    double force = 0;          ///< N, opening
-    double moment_x = 0;       ///< N m, Int p_c y dA (film_loads.h conventions)
-    double moment_y = 0;       ///< N m, -Int p_c x dA
-    double min_film = 0;       ///< m, smallest h on the quadrature points
-    double heating_film = 0;   ///< m, Int r^2 dA / Int r^2/h dA (dissipation-mean film)
-    double area_fraction = 0;  ///< real contact area / nominal area
+    double force = 0;         ///< N, opening
+    double moment_x = 0;      ///< N m, Int p_c y dA (film_loads.h conventions)
+    double moment_y = 0;      ///< N m, -Int p_c x dA
+    double min_film = 0;      ///< m, smallest h on the quadrature points
+    double heating_film = 0;  ///< m, Int r^2 dA / Int r^2/h dA (dissipation-mean film)
+    double area_fraction = 0; ///< real contact area / nominal area
   };
 
   static void declare_parameters(dealii::ParameterHandler &prm);

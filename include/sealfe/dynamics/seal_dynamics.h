@@ -43,8 +43,9 @@ SealConfiguration configuration_from_string(const std::string &name);
 /// with tilt vector t = (tilt_x, tilt_y) is
 ///   -support_stiffness t - support_damping t_dot - omega rotating_damping J t,  J = [[0,1],[-1,0]]
 /// so rotating_damping is the part of the support damping that turns with the ring: it adds the
-/// circulatory stiffness omega d (Wileman & Green: D_n = ... + omega_n d_sn, i.e. rotating_damping =
-/// support_damping; Varney & Green (2017)'s rotor: support_damping = D_r, rotating_damping = D_omega_r).
+/// circulatory stiffness omega d (Wileman & Green: D_n = ... + omega_n d_sn, i.e. rotating_damping
+/// = support_damping; Varney & Green (2017)'s rotor: support_damping = D_r, rotating_damping =
+/// D_omega_r).
 struct RingProperties
 {
   double transverse_inertia = 0; // I_t, kg m^2
@@ -54,10 +55,12 @@ struct RingProperties
   double rotating_damping = 0;   // N m s/rad
   /// Static misalignment of the support (rad): the tilt the support holds the ring at, about the
   /// x axis at t = 0 and turning with the ring (fixed in space if the ring does not spin). For a
-  /// rigid ring it is the ring's own tilt (run-out). Varney & Green (2017): gamma_si (stator), chi_s (rotor).
+  /// rigid ring it is the ring's own tilt (run-out). Varney & Green (2017): gamma_si (stator),
+  /// chi_s (rotor).
   double support_misalignment = 0;
   /// Dynamic misalignment chi (rad): angle between the ring's principal axes and its spin axis;
-  /// forces (I_t - I_p) chi omega^2 (Varney & Green (2017) Appendix A). Only for a flexible spinning ring.
+  /// forces (I_t - I_p) chi omega^2 (Varney & Green (2017) Appendix A). Only for a flexible
+  /// spinning ring.
   double dynamic_misalignment = 0;
 };
 
@@ -100,10 +103,10 @@ struct ForcedResponse
   static HarmonicTilt at_frequency(const std::vector<HarmonicTilt> &h, double W);
 };
 
-/// Angular dynamics of one or two rings coupled by the film (Wileman & Green Eq. 2, Varney & Green (2017) Eq. 24-27).
-/// The film coefficients describe the stator ring's face relative to the rotor ring's face; they
-/// are the same the other way round (film_coefficients.h), so "ring 2" of Wileman & Green (speed
-/// omega2, swept in Table 1) is the stator ring here and "ring 1" the rotor ring.
+/// Angular dynamics of one or two rings coupled by the film (Wileman & Green Eq. 2, Varney & Green
+/// (2017) Eq. 24-27). The film coefficients describe the stator ring's face relative to the rotor
+/// ring's face; they are the same the other way round (film_coefficients.h), so "ring 2" of Wileman
+/// & Green (speed omega2, swept in Table 1) is the stator ring here and "ring 1" the rotor ring.
 class AngularSealDynamics
 {
 public:
@@ -138,8 +141,8 @@ public:
   /// Routh-Hurwitz route (Wileman & Green): the real characteristic polynomial sum a_k lambda^k,
   /// coefficients a_0..a_n (n = 8 with two flexible rings, 4 with one), obtained by multiplying
   /// the complex characteristic equation (Eq. 3) by its conjugate. For two flexible rings the
-  /// a_k are those of Wileman & Green Appendix B. Needs an isotropic tilt block without cross-coupled
-  /// damping (else std::runtime_error).
+  /// a_k are those of Wileman & Green Appendix B. Needs an isotropic tilt block without
+  /// cross-coupled damping (else std::runtime_error).
   std::vector<double> hurwitz_polynomial(double rotor_speed, double stator_speed) const;
   /// The same coefficients by multiplying the complex polynomial det(Eq. 3) by its conjugate
   /// numerically (an independent route to check Appendix B).
@@ -173,12 +176,12 @@ public:
                                                     double from, double to, unsigned int n_grid,
                                                     Criterion criterion) const;
 
-  /// Closed-form stability thresholds without support damping (Wileman & Green Eq. 17, and its one-ring
-  /// forms -I psi^2 + J omega psi + k11 + k_s = 0 for FMS/FMR): the swept speeds at which the
-  /// seal, with its support damping removed, has a neutral mode precessing at
-  /// psi = (omega1 + omega2)/2. Real roots only, ascending. Needs a film whose cross-coupled
-  /// stiffness is (omega1 + omega2)/2 times its damping (level 0); the film coefficients are
-  /// taken at the speeds (fixed_speed, fixed_speed) — k11 and d11 do not depend on speed there.
+  /// Closed-form stability thresholds without support damping (Wileman & Green Eq. 17, and its
+  /// one-ring forms -I psi^2 + J omega psi + k11 + k_s = 0 for FMS/FMR): the swept speeds at which
+  /// the seal, with its support damping removed, has a neutral mode precessing at psi = (omega1 +
+  /// omega2)/2. Real roots only, ascending. Needs a film whose cross-coupled stiffness is (omega1 +
+  /// omega2)/2 times its damping (level 0); the film coefficients are taken at the speeds
+  /// (fixed_speed, fixed_speed) — k11 and d11 do not depend on speed there.
   std::vector<double> undamped_threshold_speeds(SweptRing swept, double fixed_speed) const;
 
   /// Steady-state response to the rings' misalignments (support_misalignment,
@@ -186,8 +189,8 @@ public:
   /// forcing frequency (0, the rotor speed, the stator speed).
   ForcedResponse forced_response(double rotor_speed, double stator_speed) const;
 
-  /// Varney & Green (Varney & Green (2017)) Appendix B, Eq. B3-B5, for the FMS with flexible rotor: the
-  /// synchronous amplitudes (Gamma_xi_s, Gamma_eta_s, Gamma_xi_r, Gamma_eta_r) of the response
+  /// Varney & Green (Varney & Green (2017)) Appendix B, Eq. B3-B5, for the FMS with flexible rotor:
+  /// the synchronous amplitudes (Gamma_xi_s, Gamma_eta_s, Gamma_xi_r, Gamma_eta_r) of the response
   /// gamma = Re(Gamma e^{i omega_r t}) to the rotor's misalignments, with the paper's typos fixed
   /// (S1: -D_omega_r in the K_f term; Delta carries the opposite overall sign). Needs the
   /// level-0 film relation c = omega_r/2 D_f.
@@ -318,7 +321,8 @@ struct SealDynamicsInput
   FilmCoefficientProvider finite_element;
 
   /// Declares subsection "Seal dynamics" with its subsections "Rotor ring" and "Stator ring".
-  /// Defaults: the FMS seal on a flexible rotor of Varney & Green (Varney & Green (2017) Tables 1-2).
+  /// Defaults: the FMS seal on a flexible rotor of Varney & Green (Varney & Green (2017) Tables
+  /// 1-2).
   static void declare_parameters(dealii::ParameterHandler &prm);
   /// Reads "Seal dynamics", "Geometry" and "Operating conditions".
   void parse_parameters(dealii::ParameterHandler &prm);

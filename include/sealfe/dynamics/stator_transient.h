@@ -1,6 +1,7 @@
 // StatorTransient: the flexibly mounted stator of Green 2002 Eq. 26 in time — axial Z, stator
 // tilt (Cartesian components), coning beta — under ramps, rotor runout, closing force, supports,
-// film (any FilmForceModel) and asperity contact, integrated by SUNDIALS ARKode (implicit, adaptive).
+// film (any FilmForceModel) and asperity contact, integrated by SUNDIALS ARKode (implicit,
+// adaptive).
 #pragma once
 
 #include <sealfe/dynamics/closing_force.h>
@@ -22,14 +23,14 @@ namespace sealfe
 /// paper (defaults assumed, doc/transient.md).
 struct StatorRing
 {
-  double mass = 1;                     ///< kg
+  double mass = 1;                       ///< kg
   double transverse_inertia = 8.3232e-4; ///< kg m^2 (m ro^2 / 2)
-  double axial_stiffness = 5e5;        ///< N/m
-  double axial_damping = 300;          ///< N s/m
-  double angular_stiffness = 50;       ///< N m/rad
-  double angular_damping = 0.005;      ///< N m s/rad
-  double initial_misalignment = 0;     ///< gamma_si (rad), fixed in space
-  double misalignment_angle = 0;       ///< its direction (rad)
+  double axial_stiffness = 5e5;          ///< N/m
+  double axial_damping = 300;            ///< N s/m
+  double angular_stiffness = 50;         ///< N m/rad
+  double angular_damping = 0.005;        ///< N m s/rad
+  double initial_misalignment = 0;       ///< gamma_si (rad), fixed in space
+  double misalignment_angle = 0;         ///< its direction (rad)
 
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
@@ -83,8 +84,8 @@ struct TransientSample
 /// The seal case shared by `sealfe equilibrium` and `sealfe transient`.
 struct FlexibleStatorSeal
 {
-  FilmThickness geometry;          ///< ri, ro, C0 (and Coning when thermal coning is off)
-  OperatingConditions conditions;  ///< viscosity (and the point of `sealfe equilibrium`)
+  FilmThickness geometry;         ///< ri, ro, C0 (and Coning when thermal coning is off)
+  OperatingConditions conditions; ///< viscosity (and the point of `sealfe equilibrium`)
   ClosingForce closing;
   StatorRing stator;
   RotorRunout runout;

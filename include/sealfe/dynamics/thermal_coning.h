@@ -28,11 +28,11 @@ struct ThermalConing
   };
   Model model = Model::first_order_lag;
   Film film = Film::dissipation_mean;
-  double time_constant = 2;        ///< tau (s), >= 0; 0: quasi-static
-  double reference_coning = 5e-6;  ///< beta_ref (rad)
-  double reference_film = 0.3e-6;  ///< h_ref (m)
-  double reference_speed = 500;    ///< omega_ref (rad/s)
-  double initial_coning = 0;       ///< beta(0) (rad)
+  double time_constant = 2;       ///< tau (s), >= 0; 0: quasi-static
+  double reference_coning = 5e-6; ///< beta_ref (rad)
+  double reference_film = 0.3e-6; ///< h_ref (m)
+  double reference_speed = 500;   ///< omega_ref (rad/s)
+  double initial_coning = 0;      ///< beta(0) (rad)
 
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
