@@ -3,6 +3,7 @@
 #include <sealfe/applications/response.h>
 #include <sealfe/applications/stability.h>
 #include <sealfe/applications/table_sweep.h>
+#include <sealfe/applications/transient.h>
 #include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/dynamics/seal_dynamics.h>
@@ -115,6 +116,14 @@ std::vector<SubCommand> sub_commands()
          output::make_directory(dir);
          return annular::run(prm, dir);
        }},
+      {"equilibrium", "axial operating point under the closing force -> summary.json", true, false,
+       equilibrium::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       { return equilibrium::run(prm, dir); }},
+      {"transient", "start-up/run/shut-down transient (Green 2002) -> CSV, PNG", true, false,
+       transient::declare_parameters,
+       [](ParameterHandler &prm, const std::string &dir, MPI_Comm)
+       { return transient::run(prm, dir); }},
   };
 }
 

@@ -1,0 +1,143 @@
+// StatorTransient: the flexibly mounted stator of Green 2002 Eq. 26 in time — axial Z, stator
+// tilt (Cartesian components), coning beta — under ramps, rotor runout, closing force, supports,
+// film (any FilmForceModel) and asperity contact, integrated by SUNDIALS ARKode (implicit,
+// adaptive).
+#pragma once
+
+#include <sealfe/dynamics/closing_force.h>
+#include <sealfe/dynamics/face_contact.h>
+#include <sealfe/dynamics/operating_ramps.h>
+#include <sealfe/dynamics/thermal_coning.h>
+#include <sealfe/film/film_force_model.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace sealfe
+{
+/// The stator ring and its flexible support (subsection "Stator ring"), Green 2002 Eq. 21.
+/// Table 1 gives m, K_sz, D_sz; I = m r_g^2 / 2 with r_g = ro; the angular support is not in the
+/// paper (defaults assumed, doc/transient.md).
+struct StatorRing
+{
+  double mass = 1;                       ///< kg
+  double transverse_inertia = 8.3232e-4; ///< kg m^2 (m ro^2 / 2)
+  double axial_stiffness = 5e5;          ///< N/m
+  double axial_damping = 300;            ///< N s/m
+  double angular_stiffness = 50;         ///< N m/rad
+  double angular_damping = 0.005;        ///< N m s/rad
+  double initial_misalignment = 0;       ///< gamma_si (rad), fixed in space
+  double misalignment_angle = 0;         ///< its direction (rad)
+
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+  void validate() const;
+};
+
+/// Rotor runout (subsection "Rotor runout"): the rotor face's tilt gamma_r, whirling with the
+/// shaft angle psi_r(t) = Int omega dt (Green 2002 Eq. 19).
+struct RotorRunout
+{
+  double tilt = 1e-3; ///< rad
+  double phase = 0;   ///< rad, direction of the tilt at t = 0
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+  /// Tilt vector (tilt_x, tilt_y) of the rotor face (film_thickness.h conventions) at angle psi.
+  std::array<double, 2> vector(double shaft_angle) const;
+};
+
+/// Subsection "Transient": end time, tolerances, output interval, initial state.
+struct TransientSettings
+{
+  double end_time = 9;
+  double relative_tolerance = 1e-6;
+  double absolute_tolerance = 1e-6; ///< on the scaled state (Z/C0, tilt ro/C0, ...)
+  double output_interval = 2e-3;
+  double initial_axial_offset = -0.65; ///< Z(0)/C0
+  bool start_at_rest_equilibrium = false;
+  double minimum_step = 1e-12;
+  unsigned long maximum_steps = 2000000;
+  double contact_threshold = 0.01; ///< in contact: contact force > this fraction of F_cls
+  unsigned int order = 3;          ///< ARKode DIRK order
+
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+  void validate() const;
+};
+
+/// One output row of the transient.
+struct TransientSample
+{
+  double time, rotor_speed, inner_pressure, outer_pressure;
+  double axial_offset, axial_velocity;
+  double stator_tilt_x, stator_tilt_y, rotor_tilt_x, rotor_tilt_y;
+  double relative_tilt, coning, min_film, min_film_over_sigma, heating_film;
+  double film_force, contact_force, closing_force, film_moment_x, film_moment_y;
+  double contact_moment_x, contact_moment_y, leakage_inner, friction_torque, leaked_volume;
+  double stator_tilt() const;
+  double stator_precession() const;
+};
+
+/// The seal case shared by `sealfe equilibrium` and `sealfe transient`.
+struct FlexibleStatorSeal
+{
+  FilmThickness geometry;         ///< ri, ro, C0 (and Coning when thermal coning is off)
+  OperatingConditions conditions; ///< viscosity (and the point of `sealfe equilibrium`)
+  ClosingForce closing;
+  StatorRing stator;
+  RotorRunout runout;
+  ThermalConing thermal;
+  OperatingRamps ramps;
+  FaceContact contact;
+
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+  void validate() const;
+  double face_area() const;
+};
+
+/// The state of Eq. 26 in Cartesian form (doc/transient.md):
+///   m Z''      = F_f + F_c - F_cls(t) - K_sz Z - D_sz Z'
+///   I a_s''    = M_f + M_c - K_s (a_s - a_si) - D_s a_s'      (a_s = stator tilt vector)
+///   tau beta'  = beta_ref (h_ref/h)(omega/omega_ref)^2 - beta
+///   V'         = Q_inner
+/// with the film and contact evaluated at the relative tilt a = a_s - a_r(psi_r(t)).
+class StatorTransient
+{
+public:
+  StatorTransient(const FlexibleStatorSeal &seal, const FilmForceModel &film,
+                  const TransientSettings &settings);
+
+  struct Result
+  {
+    std::vector<TransientSample> samples;
+    bool complete = false;
+    std::string stop_reason;
+    unsigned long film_evaluations = 0;
+    unsigned long steps = 0;
+    unsigned long error_test_failures = 0, convergence_failures = 0, jacobian_setups = 0;
+  };
+  /// Integrates from the initial state to the end time. A failure of the integrator (step size
+  /// collapse, film out of range) stops the run: the samples so far are kept, complete = false.
+  Result run() const;
+
+  /// The full sample (loads included) for the physical state y at time t.
+  TransientSample sample(double t, const std::array<double, 8> &y) const;
+  /// The initial state (Z, Z', a_sx, a_sy, a_sx', a_sy', beta, V).
+  std::array<double, 8> initial_state() const;
+
+private:
+  struct Evaluation;
+  Evaluation evaluate(double t, const std::array<double, 8> &y) const;
+  std::array<double, 8> rate(double t, const std::array<double, 8> &y) const;
+
+  const FlexibleStatorSeal &seal;
+  const FilmForceModel &film;
+  TransientSettings settings;
+  std::array<double, 8> scale;
+  mutable unsigned long evaluations = 0;
+};
+} // namespace sealfe

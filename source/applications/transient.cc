@@ -1,0 +1,291 @@
+#include <sealfe/applications/transient.h>
+#include <sealfe/closed_form/narrow_seal.h>
+#include <sealfe/dynamics/closed_form_transient_film.h>
+#include <sealfe/dynamics/equilibrium.h>
+#include <sealfe/film/cavitation.h>
+#include <sealfe/io/output.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+namespace
+{
+/// The film of the chosen level; only the closed form (level 0) is available here so far.
+std::unique_ptr<ClosedFormTransientFilm> make_film(dealii::ParameterHandler &prm,
+                                                   const FlexibleStatorSeal &seal)
+{
+  prm.enter_subsection("Transient");
+  const FilmLevel level = film_level_from_string(prm.get("Film level"));
+  prm.leave_subsection();
+  CavitationSettings cavitation;
+  cavitation.parse_parameters(prm);
+  if (level != FilmLevel::closed_form)
+    throw std::runtime_error("Transient: Film level = " + to_string(level) +
+                             " is not available yet for equilibrium/transient (use closed form)");
+  if (cavitation.is_nonlinear())
+    throw std::runtime_error("Cavitation: the closed-form film (level 0) gives none or "
+                             "half-sommerfeld only, not reynolds or jfo");
+  NarrowSealQuadrature quadrature;
+  quadrature.parse_parameters(prm);
+  return std::make_unique<ClosedFormTransientFilm>(seal.geometry, seal.conditions, cavitation.model,
+                                                   quadrature, cavitation.pressure);
+}
+
+void declare_case(dealii::ParameterHandler &prm)
+{
+  FlexibleStatorSeal::declare_parameters(prm);
+  TransientSettings::declare_parameters(prm);
+  // the level-0 film of the transient needs only a coarse quadrature (smooth, mostly
+  // uncavitated pressure); the narrow-seal defaults of `sealfe solve` are for 1e-10 accuracy
+  prm.enter_subsection("Narrow seal");
+  prm.declare_entry("Radial quadrature points", "8", dealii::Patterns::Integer(1),
+                    "Gauss-Legendre points per radial piece of the narrow-seal loads.");
+  prm.declare_entry("Angular quadrature points", "64", dealii::Patterns::Integer(4),
+                    "Points around the face of the narrow-seal loads.");
+  prm.leave_subsection();
+}
+} // namespace
+
+namespace equilibrium
+{
+void declare_parameters(dealii::ParameterHandler &prm)
+{
+  declare_case(prm);
+}
+
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
+{
+  FlexibleStatorSeal seal;
+  seal.parse_parameters(prm);
+  seal.validate();
+  const auto film = make_film(prm, seal);
+  FilmState state;
+  state.rotor_speed = seal.conditions.rotor_speed;
+  state.stator_speed = seal.conditions.stator_speed;
+  state.inner_pressure = seal.conditions.inner_pressure;
+  state.outer_pressure = seal.conditions.outer_pressure;
+  const SealEquilibrium eq = solve_equilibrium(seal, *film, state);
+  state.axial_offset = eq.axial_offset;
+  state.coning = eq.coning;
+  const FilmCoefficients k = central_difference_coefficients(*film, state, eq.contact.min_film,
+                                                             seal.geometry.outer_radius);
+  // contact stiffness: central difference of the contact force in z
+  const double dz = 1e-3 * eq.contact.min_film;
+  FilmState up = state, down = state;
+  up.axial_offset += dz;
+  down.axial_offset -= dz;
+  const double kc = -(seal.contact.loads(up.apply(seal.geometry)).force -
+                      seal.contact.loads(down.apply(seal.geometry)).force) /
+                    (2 * dz);
+  nlohmann::json s;
+  s["clearance"] = seal.geometry.clearance + eq.axial_offset;
+  s["axial_offset"] = eq.axial_offset;
+  s["min_film"] = eq.contact.min_film;
+  s["min_film_over_sigma"] = eq.contact.min_film / seal.contact.composite_roughness();
+  s["coning"] = eq.coning;
+  s["opening_force"] = eq.film.force_z;
+  s["contact_force"] = eq.contact.force;
+  s["support_force"] = eq.support_force;
+  s["closing_force"] = eq.closing_force;
+  s["leakage_inner"] = eq.film.leakage_inner;
+  s["leakage_outer"] = eq.film.leakage_outer;
+  s["friction_torque"] = eq.film.friction_torque;
+  s["film_coefficients"] = k.to_json();
+  s["stiffness"] = {{"axial_film", k.stiffness[0][0]},
+                    {"axial_contact", kc},
+                    {"axial_support", seal.stator.axial_stiffness},
+                    {"axial_total", k.stiffness[0][0] + kc + seal.stator.axial_stiffness},
+                    {"angular_film", k.tilt_direct_stiffness()},
+                    {"cross_coupled_film", k.tilt_cross_stiffness()}};
+  s["damping"] = {{"axial_film", k.damping[0][0]},
+                  {"axial_support", seal.stator.axial_damping},
+                  {"angular_film", k.tilt_direct_damping()}};
+  s["roots_found"] = eq.roots_found;
+  s["film_model"] = film->description();
+  s["film_evaluations"] = film->evaluations();
+  s["tilts"] = "not solved: the equilibrium is axisymmetric (stator misalignment and runout "
+               "ignored)";
+  std::cout << "sealfe equilibrium: clearance " << seal.geometry.clearance + eq.axial_offset
+            << " m, min film / sigma " << s["min_film_over_sigma"].get<double>() << ", coning "
+            << eq.coning << " rad, leakage " << eq.film.leakage_inner << " m^3/s\n";
+  return s;
+}
+} // namespace equilibrium
+} // namespace sealfe
+
+namespace sealfe
+{
+namespace transient
+{
+void declare_parameters(dealii::ParameterHandler &prm)
+{
+  declare_case(prm);
+  prm.enter_subsection("Transient");
+  prm.declare_entry("Plot", "true", dealii::Patterns::Bool(),
+                    "Write transient.png (histories like Green 2002 Figs. 4-5) with "
+                    "scripts/plot_transient.py, if python3 with matplotlib is found.");
+  prm.leave_subsection();
+}
+
+namespace
+{
+std::string csv_text(const std::vector<TransientSample> &rows)
+{
+  std::ostringstream out;
+  out << "time [s],rotor speed [rad/s],inner pressure [Pa],outer pressure [Pa],Z [m],"
+         "stator tilt [rad],stator precession [rad],relative tilt [rad],coning [rad],"
+         "min film [m],min film/sigma [-],heating film [m],film force [N],contact force [N],"
+         "closing force [N],film moment x [N m],film moment y [N m],contact moment x [N m],"
+         "contact moment y [N m],leakage inner [m^3/s],friction torque [N m],"
+         "leaked volume [m^3]\n";
+  out.precision(10);
+  for (const auto &s : rows)
+    out << s.time << "," << s.rotor_speed << "," << s.inner_pressure << "," << s.outer_pressure
+        << "," << s.axial_offset << "," << s.stator_tilt() << "," << s.stator_precession() << ","
+        << s.relative_tilt << "," << s.coning << "," << s.min_film << "," << s.min_film_over_sigma
+        << "," << s.heating_film << "," << s.film_force << "," << s.contact_force << ","
+        << s.closing_force << "," << s.film_moment_x << "," << s.film_moment_y << ","
+        << s.contact_moment_x << "," << s.contact_moment_y << "," << s.leakage_inner << ","
+        << s.friction_torque << "," << s.leaked_volume << "\n";
+  return out.str();
+}
+
+nlohmann::json sample_json(const TransientSample &s)
+{
+  return {{"time", s.time},
+          {"rotor_speed", s.rotor_speed},
+          {"axial_offset", s.axial_offset},
+          {"stator_tilt", s.stator_tilt()},
+          {"relative_tilt", s.relative_tilt},
+          {"coning", s.coning},
+          {"min_film", s.min_film},
+          {"min_film_over_sigma", s.min_film_over_sigma},
+          {"film_force", s.film_force},
+          {"contact_force", s.contact_force},
+          {"leakage_inner", s.leakage_inner},
+          {"leaked_volume", s.leaked_volume}};
+}
+
+/// Lift-off / touch-down events, the largest contact force and the leaked volume.
+nlohmann::json events(const std::vector<TransientSample> &rows, const double threshold)
+{
+  nlohmann::json first_lift_off = nullptr, last_touch_down = nullptr;
+  double max_contact = 0, t_max = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+  {
+    const bool in = rows[i].contact_force > threshold * rows[i].closing_force;
+    if (rows[i].contact_force > max_contact)
+    {
+      max_contact = rows[i].contact_force;
+      t_max = rows[i].time;
+    }
+    if (i == 0)
+      continue;
+    const bool was = rows[i - 1].contact_force > threshold * rows[i - 1].closing_force;
+    if (was && !in && first_lift_off.is_null())
+      first_lift_off = {{"time", rows[i].time}, {"rotor_speed", rows[i].rotor_speed}};
+    if (!was && in)
+      last_touch_down = {{"time", rows[i].time}, {"rotor_speed", rows[i].rotor_speed}};
+  }
+  return {{"first_lift_off", first_lift_off},
+          {"last_touch_down", last_touch_down},
+          {"max_contact_force", max_contact},
+          {"time_of_max_contact_force", t_max},
+          {"leaked_volume", rows.empty() ? 0.0 : rows.back().leaked_volume}};
+}
+
+std::string plot(const std::string &dir, std::string &note)
+{
+  std::string here = __FILE__;
+  const auto slash = here.find_last_of('/');
+  const std::string script = here.substr(0, slash) + "/../../scripts/plot_transient.py";
+  if (!std::ifstream(script).good())
+  {
+    note = "plot skipped: " + script + " not found";
+    return "";
+  }
+  for (const std::string py : {"/usr/bin/python3", "python3"})
+  {
+    if (std::system((py + " -c 'import matplotlib' > /dev/null 2>&1").c_str()) != 0)
+      continue;
+    const std::string cmd = py + " '" + script + "' '" + dir + "/transient.csv' '" + dir +
+                            "/transient.png' > /dev/null 2>&1";
+    if (std::system(cmd.c_str()) == 0)
+      return "transient.png";
+    note = "plot failed: " + cmd;
+    return "";
+  }
+  note = "plot skipped: no python3 with matplotlib";
+  return "";
+}
+} // namespace
+
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
+{
+  const auto start = std::chrono::steady_clock::now();
+  FlexibleStatorSeal seal;
+  seal.parse_parameters(prm);
+  seal.validate();
+  TransientSettings settings;
+  settings.parse_parameters(prm);
+  settings.validate();
+  prm.enter_subsection("Transient");
+  const bool want_plot = prm.get_bool("Plot");
+  prm.leave_subsection();
+  const auto film = make_film(prm, seal);
+
+  const StatorTransient transient(seal, *film, settings);
+  const StatorTransient::Result result = transient.run();
+  output::make_directory(dir);
+  output::write_file_atomically(dir, "transient.csv", csv_text(result.samples));
+
+  nlohmann::json s = events(result.samples, settings.contact_threshold);
+  s["complete"] = result.complete;
+  if (!result.complete)
+    s["stop_reason"] = result.stop_reason;
+  s["end_time"] = result.samples.empty() ? 0.0 : result.samples.back().time;
+  s["final_state"] =
+      result.samples.empty() ? nlohmann::json(nullptr) : sample_json(result.samples.back());
+  s["film_model"] = film->description();
+  s["film_evaluations"] = result.film_evaluations;
+  s["steps"] = result.steps;
+  s["integrator"] = {{"error_test_failures", result.error_test_failures},
+                     {"convergence_failures", result.convergence_failures},
+                     {"jacobian_setups", result.jacobian_setups}};
+  s["thermal_coning_film"] = seal.thermal.film_name();
+  s["integration_wall_time"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json files = {"transient.csv"};
+  if (want_plot && !result.samples.empty())
+  {
+    std::string note;
+    const std::string png = plot(dir, note);
+    if (!png.empty())
+      files.push_back(png);
+    else
+      s["plot_note"] = note;
+  }
+  s["files"] = files;
+  if (!result.complete)
+  {
+    s["sub_command"] = "transient";
+    output::write_summary(dir, s);
+    throw std::runtime_error("transient: " + result.stop_reason +
+                             "; the rows computed so far "
+                             "are in " +
+                             dir + "/transient.csv, summary.json says complete = false");
+  }
+  std::cout << "sealfe transient: " << result.samples.size() << " rows, " << result.steps
+            << " steps, " << result.film_evaluations << " film evaluations\n";
+  return s;
+}
+} // namespace transient
+} // namespace sealfe
