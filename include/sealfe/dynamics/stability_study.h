@@ -13,9 +13,10 @@ namespace sealfe
 namespace stability
 {
 /// Declares subsections "Seal dynamics" (rings, configuration, film model) and "Stability" (the
-/// speed sweep and an optional second parameter). "Geometry" and "Operating conditions" are
-/// declared by the application, and so are the finite-element solver's subsections (needed for
-/// Film model = finite element).
+/// speed sweep — Speed from, Speed to, Speed points as in `sealfe response`; the former names
+/// Sweep from, Sweep to, Grid points are aliases — and an optional second parameter). "Geometry"
+/// and "Operating conditions" are declared by the application, and so are the finite-element
+/// solver's subsections (needed for Film model = finite element).
 void declare_parameters(dealii::ParameterHandler &prm);
 
 /// Reads the parsed parameters, computes, writes stability_growth_rate.csv (swept speed against
