@@ -1,4 +1,5 @@
 #include <sealfe/closed_form/narrow_seal_film.h>
+#include <sealfe/coefficients/finite_element_film.h>
 #include <sealfe/coefficients/table_film.h>
 #include <sealfe/dynamics/film_levels.h>
 #include <sealfe/dynamics/shared_cache.h>
@@ -7,41 +8,6 @@
 
 namespace sealfe
 {
-namespace
-{
-/// Level 2 through the application's coefficient producer: coefficients only.
-/// TODO(FiniteElementFilm): delete this class; FiniteElementFilm replaces it.
-class ProducedFiniteElementFilm : public FilmForceModel
-{
-public:
-  ProducedFiniteElementFilm(FilmCoefficientProvider producer, const FilmThickness &geometry,
-                            const OperatingConditions &operating)
-      : producer(std::move(producer)), geometry(geometry), operating(operating)
-  {
-  }
-  FilmLevel level() const override { return FilmLevel::finite_element; }
-  std::string description() const override { return "finite element (application's solver)"; }
-  FilmLoads loads(const FilmState &) const override
-  {
-    throw std::runtime_error("Seal dynamics: the finite-element film of the coefficient hook "
-                             "gives no loads");
-  }
-  FilmCoefficients coefficients(const FilmState &state) const override
-  {
-    FilmCoefficients k = producer(state.apply(geometry), state.apply(operating));
-    k.level = 2;
-    k.rotor_speed = state.rotor_speed;
-    k.stator_speed = state.stator_speed;
-    return k;
-  }
-
-private:
-  FilmCoefficientProvider producer;
-  FilmThickness geometry;
-  OperatingConditions operating;
-};
-} // namespace
-
 std::shared_ptr<const FilmForceModel> make_film_force_model(const FilmLevel level,
                                                             const FilmThickness &geometry,
                                                             const OperatingConditions &operating,
@@ -57,13 +23,12 @@ std::shared_ptr<const FilmForceModel> make_film_force_model(const FilmLevel leve
                                "written by sealfe table)");
     return std::make_shared<TableFilm>(sources.table, geometry, operating, sources.table_name);
   case FilmLevel::finite_element:
-    // TODO(FiniteElementFilm): return std::make_shared<FiniteElementFilm>(sources.finite_element,
-    // sources.comm) with the geometry and operating point.
-    if (!sources.finite_element)
-      throw std::runtime_error("Seal dynamics: Film model = finite element needs the "
-                               "finite-element solver, which the sealfe application supplies "
-                               "(SealDynamicsInput::finite_element is empty)");
-    return std::make_shared<ProducedFiniteElementFilm>(sources.finite_element, geometry, operating);
+  {
+    FilmSettings settings = sources.film_solver;
+    settings.geometry = geometry;
+    settings.conditions = operating;
+    return std::make_shared<FiniteElementFilm>(settings, sources.comm, sources.coefficient_method);
+  }
   }
   throw std::runtime_error("Seal dynamics: unknown film level");
 }

@@ -73,6 +73,19 @@ void SealDynamicsInput::parse_parameters(dealii::ParameterHandler &prm)
   rotor = parse_ring_parameters(prm, "Rotor ring");
   stator = parse_ring_parameters(prm, "Stator ring");
   prm.leave_subsection();
+  if (film_level == FilmLevel::finite_element)
+    try
+    {
+      film_solver.parse_solver_parameters(prm);
+      coefficient_method.parse_parameters(prm);
+    }
+    catch (const dealii::ExceptionBase &)
+    {
+      throw std::runtime_error(
+          "Seal dynamics: Film model = finite element needs the finite-element solver's "
+          "parameters (subsections Discretization, Cavitation, Roughness, Contact, Coefficients: "
+          "CoefficientSolver::declare_parameters)");
+    }
 }
 
 void SealDynamicsInput::validate() const
@@ -94,7 +107,7 @@ void SealDynamicsInput::validate() const
     throw std::runtime_error(s.str());
   }
   // Level 0 checks the narrow seal, level 1 reads the table and checks that it holds this seal,
-  // level 2 that the solver is there (no FE solve).
+  // level 2 builds the solver (no FE solve).
   film_force_model();
   if (film_level == FilmLevel::finite_element)
   {
@@ -130,7 +143,8 @@ std::shared_ptr<const CoefficientTable> SealDynamicsInput::table() const
 std::shared_ptr<const FilmForceModel> SealDynamicsInput::film_force_model() const
 {
   FilmLevelSources sources;
-  sources.finite_element = finite_element;
+  sources.film_solver = film_solver;
+  sources.coefficient_method = coefficient_method;
   sources.table_name = table_file;
   if (film_level != FilmLevel::table)
     return make_film_force_model(film_level, geometry, operating, sources);
@@ -289,6 +303,17 @@ void SealDynamicsInput::set(const std::string &name, const double value,
              (name.rfind("Stator ring ", 0) == 0 && ring(stator, name.substr(12)))))
     throw std::runtime_error("Seal dynamics: unknown parameter '" + name + "' (one of " +
                              parameter_names() + ")");
+}
+
+void declare_speed_sweep(dealii::ParameterHandler &prm, const std::string &from,
+                         const std::string &to, const std::string &points,
+                         const std::string &points_documentation)
+{
+  prm.declare_entry("Speed from", from, dealii::Patterns::Double(),
+                    "First (lowest) speed of the swept ring (rad/s).");
+  prm.declare_entry("Speed to", to, dealii::Patterns::Double(),
+                    "Last (highest) speed of the swept ring (rad/s).");
+  prm.declare_entry("Speed points", points, dealii::Patterns::Integer(2), points_documentation);
 }
 
 } // namespace sealfe

@@ -2,8 +2,9 @@
 // the CSV layout (header with units, one row per point), a failing point reported in its row
 // while the rest of the table is kept, the same file on 1 and 2 MPI ranks, and the held-out error
 // of an FE table falling with grid refinement. Bad input: tests/input/table_cli_input.cc.
-#include <sealfe/applications/table_sweep.h>
 #include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/coefficients/table_sweep.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <gtest/gtest.h>
 
@@ -220,13 +221,13 @@ TEST(TableCli, HeldOutErrorOfAnFETableFallsAtTheInterpolantsOrder)
 
 TEST(TableSweep, ListsAndRanges)
 {
-  EXPECT_EQ(parse_sweep_values("3, 1, 2", "X"), (std::vector<double>{1, 2, 3}));
-  EXPECT_EQ(parse_sweep_values("0 : 4000 : 5", "X"),
+  EXPECT_EQ(numerics::parse_number_list("3, 1, 2", "X"), (std::vector<double>{1, 2, 3}));
+  EXPECT_EQ(numerics::parse_number_list("0 : 4000 : 5", "X"),
             (std::vector<double>{0, 1000, 2000, 3000, 4000}));
-  EXPECT_EQ(parse_sweep_values("  ", "X"), std::vector<double>{});
-  EXPECT_EQ(parse_sweep_values("7:7:1", "X"), std::vector<double>{7});
-  EXPECT_THROW(parse_sweep_values("1, 1", "X"), std::runtime_error);
-  EXPECT_THROW(parse_sweep_values("1:2:0", "X"), std::runtime_error);
+  EXPECT_EQ(numerics::parse_number_list("  ", "X"), std::vector<double>{});
+  EXPECT_EQ(numerics::parse_number_list("7:7:1", "X"), std::vector<double>{7});
+  EXPECT_THROW(numerics::parse_number_list("1, 1", "X"), std::runtime_error);
+  EXPECT_THROW(numerics::parse_number_list("1:2:0", "X"), std::runtime_error);
   OperatingPoint base;
   const SweepPlan plan = SweepPlan::make(
       base, {{"rotor_speed", {0, 1000, 2000}}, {"clearance", {1e-6, 2e-6}}, {"tilt", {}}}, 2);

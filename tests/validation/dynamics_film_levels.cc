@@ -2,12 +2,12 @@
 // omega2 range of the Wileman & Green reference seal (Wileman & Green, Table 1 reference row, ri/ro
 // = 0.8) with Green & Etsion's closed forms (level 0), with finite-element coefficients (level 2)
 // and with a coefficient table read back from CSV (level 1); the same through the command line.
-#include <sealfe/applications/stability.h>
-#include <sealfe/applications/table_sweep.h>
 #include <sealfe/closed_form/green_etsion.h>
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/coefficients/table_sweep.h>
 #include <sealfe/dynamics/seal_dynamics.h>
+#include <sealfe/dynamics/stability_study.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -74,21 +74,30 @@ struct Mesh
 /// Coarse enough for the test's time budget; the finer one checks its convergence.
 const Mesh coarse{2, 4, 32}, fine{2, 8, 64};
 
-/// The level-2 producer as the application builds it (a CoefficientSolver on MPI_COMM_SELF, full
-/// film: the default cavitation model none), on the given mesh, without error estimate.
-FilmCoefficientProvider finite_element(const Mesh &m, unsigned int *count = nullptr)
+/// The level-2 solver settings as the application parses them (full film: the default cavitation
+/// model none), on the given mesh, without error estimate.
+FilmSettings finite_element(const Mesh &m)
 {
-  auto s = std::make_shared<CoefficientSolver>(MPI_COMM_SELF);
-  s->reynolds().polynomial_degree = m.degree;
-  s->reynolds().mesh().radial_cells = m.radial;
-  s->reynolds().mesh().circumferential_cells = m.circumferential;
-  s->reynolds().estimate_error = false;
-  return [s, count](const FilmThickness &f, const OperatingConditions &c)
-  {
-    if (count)
-      ++*count;
-    return s->coefficients(f, c);
-  };
+  FilmSettings s;
+  s.polynomial_degree = m.degree;
+  s.mesh.radial_cells = m.radial;
+  s.mesh.circumferential_cells = m.circumferential;
+  s.estimate_error = false;
+  return s;
+}
+
+/// How many level-2 coefficient sets `compute` makes: FiniteElementFilm logs one stderr line each.
+template <typename Compute>
+unsigned int count_fe_computations(Compute compute)
+{
+  testing::internal::CaptureStderr();
+  compute();
+  const std::string log = testing::internal::GetCapturedStderr();
+  unsigned int n = 0;
+  for (std::size_t at = log.find("level-2 film coefficients #"); at != std::string::npos;
+       at = log.find("level-2 film coefficients #", at + 1))
+    ++n;
+  return n;
 }
 
 struct Range
@@ -143,10 +152,10 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
   // FE coefficients at the operating point on the two meshes.
   SealDynamicsInput fe_seal = seal0;
   fe_seal.film_level = FilmLevel::finite_element;
-  fe_seal.finite_element = finite_element(coarse);
+  fe_seal.film_solver = finite_element(coarse);
   const Tilt t2 = tilt(fe_seal.film()(omega1, 0));
   SealDynamicsInput fine_seal = fe_seal;
-  fine_seal.finite_element = finite_element(fine);
+  fine_seal.film_solver = finite_element(fine);
   const Tilt t2f = tilt(fine_seal.film()(omega1, 0));
   const double dk = t2.k / ge.angular_stiffness() - 1, dd = t2.d / ge.angular_damping() - 1;
   const double mesh_k = relative(t2.k, t2f.k), mesh_d = relative(t2.d, t2f.d);
@@ -175,11 +184,11 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
     SealDynamicsInput level0 = reference_seal(c2);
     SealDynamicsInput level2 = level0, level2_fine = level0;
     level2.film_level = level2_fine.film_level = FilmLevel::finite_element;
-    unsigned int solves = 0;
-    level2.finite_element = finite_element(coarse, &solves);
-    level2_fine.finite_element = finite_element(fine);
+    level2.film_solver = finite_element(coarse);
+    level2_fine.film_solver = finite_element(fine);
     const Range r0 = stable_range(level0);
-    const Range r2 = stable_range(level2);
+    Range r2;
+    const unsigned int solves = count_fe_computations([&] { r2 = stable_range(level2); });
     const Range r2f = stable_range(level2_fine);
     const double diff = worst(r2, r0), mesh = worst(r2, r2f);
     std::cout << "c2 = " << c2 << ": stable omega2 range level 0 [" << r0.low << ", " << r0.high
@@ -241,10 +250,9 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
   {
     SealDynamicsInput every = reference_seal(0.5), nodes = every;
     every.film_level = nodes.film_level = FilmLevel::finite_element;
-    unsigned int n_every = 0;
-    every.finite_element = finite_element(coarse, &n_every);
+    every.film_solver = finite_element(coarse);
     every.film_speed_nodes = 0;
-    nodes.finite_element = finite_element(coarse);
+    nodes.film_solver = finite_element(coarse);
     auto range = [](const SealDynamicsInput &in)
     {
       const AngularSealDynamics d =
@@ -255,7 +263,9 @@ TEST(DynamicsFilmLevels, FiniteElementThresholdAgainstClosedForm)
           return Range{i.low, i.high};
       return Range{};
     };
-    const Range a = range(every), b = range(nodes);
+    Range a;
+    const unsigned int n_every = count_fe_computations([&] { a = range(every); });
+    const Range b = range(nodes);
     std::cout << "every speed (" << n_every << " FE computations): [" << a.low << ", " << a.high
               << "], 9 nodes: [" << b.low << ", " << b.high << "]\n";
     // Full film: K affine in the speed, so the interpolation is exact up to round-off, and the
@@ -322,7 +332,7 @@ TEST(DynamicsFilmLevels, TableThresholdMatchesFiniteElementToInterpolationError)
   level1.film_level = FilmLevel::table;
   level1.table_file = csv;
   level2.film_level = FilmLevel::finite_element;
-  level2.finite_element = finite_element(coarse);
+  level2.film_solver = finite_element(coarse);
   const Tilt t1 = tilt(level1.film()(omega1, 0)), t2 = tilt(level2.film()(omega1, 0));
   const double ek = relative(t1.k, t2.k), ed = relative(t1.d, t2.d);
   EXPECT_EQ(level1.film()(omega1, 0).level, 1);
@@ -412,7 +422,7 @@ TEST(DynamicsFilmLevels, CommandLineStabilityWithFiniteElementFilm)
   // the same range as the library route on the same mesh
   SealDynamicsInput level2 = reference_seal(0.5);
   level2.film_level = FilmLevel::finite_element;
-  level2.finite_element = finite_element(coarse);
+  level2.film_solver = finite_element(coarse);
   const Range r2 = stable_range(level2);
   ASSERT_TRUE(s["stable_range"].is_array());
   EXPECT_NEAR(s["stable_range"][0].get<double>(), r2.low, 1e-6 * std::abs(r2.low));

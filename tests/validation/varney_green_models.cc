@@ -272,7 +272,7 @@ TEST(VarneyGreen, FaceContactNearCriticalSpeed)
 // I_tr/I_ts = 50, chi = 0.5 mrad).
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
-#include <sealfe/applications/response.h>
+#include <sealfe/dynamics/response_study.h>
 
 #include <filesystem>
 #include <fstream>

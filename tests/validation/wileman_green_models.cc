@@ -1,5 +1,5 @@
-// FMRR stability (Wileman & Green, Wileman & Green): Table 1 stable speed ranges, eigenvalues against
-// the Routh-Hurwitz route (Appendix B), the closed-form criterion without support damping
+// FMRR stability (Wileman & Green, Wileman & Green): Table 1 stable speed ranges, eigenvalues
+// against the Routh-Hurwitz route (Appendix B), the closed-form criterion without support damping
 // (Eq. 17) and its FMR limit (Eq. 20).
 #include <sealfe/closed_form/green_etsion.h>
 #include <sealfe/dynamics/seal_dynamics.h>
@@ -13,8 +13,8 @@ using namespace sealfe;
 
 namespace
 {
-/// The reference seal of Wileman & Green (Table 1 and text): element 1 = rotor ring at omega1 = -2000
-/// rad/s, element 2 = stator ring (swept omega2). c_n = I_n / J_n.
+/// The reference seal of Wileman & Green (Table 1 and text): element 1 = rotor ring at omega1 =
+/// -2000 rad/s, element 2 = stator ring (swept omega2). c_n = I_n / J_n.
 struct Case
 {
   double I1 = 8e-4, I2 = 8e-4, c1 = 0.5, c2 = 0.5, ks1 = 400, ks2 = 400, ds1 = 0.24, ds2 = 0.24;
@@ -412,9 +412,9 @@ TEST(WilemanGreen, FmsThresholdWithoutSupportDamping)
 
 // ---------------------------------------------------------------------------------------------
 // `sealfe stability` front end, on the example prm/stability.prm (Table 1's reference seal).
+#include <sealfe/dynamics/stability_study.h>
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
-#include <sealfe/applications/stability.h>
 
 #include <array>
 #include <filesystem>
@@ -489,13 +489,14 @@ TEST(StabilitySubcommand, RefusesBadInputWithOneLine)
     return std::string();
   };
   const std::vector<std::pair<std::vector<Setting>, std::string>> cases = {
-      // level 2 without the FE producer (the application supplies it; this test does not)
+      // level 2 without the FE solver's subsections (the sealfe front end declares them; this
+      // test does not)
       {{{"Seal dynamics", "Film model", "finite element"}}, "needs the finite-element solver"},
       {{{"Seal dynamics", "Film model", "table"}}, "needs a Table file"},
       {{{"Seal dynamics", "Film model", "table"},
         {"Seal dynamics", "Table file", "/nonexistent.csv"}},
        "Table file"},
-      {{{"Stability", "Sweep to", "-50000"}}, "Sweep to"},
+      {{{"Stability", "Speed to", "-50000"}}, "Speed to"},
       {{{"Seal dynamics", "Configuration", "FMS with flexible rotor"},
         {"Operating conditions", "Stator speed", "500"}},
        "Stator speed"},

@@ -141,13 +141,4 @@ private:
   ReynoldsSolver solver;
 };
 
-/// `sealfe coefficients [case.prm]`: K and D (and the loads) of one operating point, with an error
-/// estimate of every entry and Green & Etsion's narrow-seal values for comparison -> summary.json.
-namespace coefficients
-{
-void declare_parameters(dealii::ParameterHandler &prm);
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
-                   MPI_Comm comm);
-} // namespace coefficients
-
 } // namespace sealfe

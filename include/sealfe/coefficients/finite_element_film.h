@@ -29,8 +29,12 @@ public:
   /// conditions), on the unrefined mesh of the settings.
   FilmLoads loads(const FilmState &state) const override;
   /// K, D of CoefficientSolver (its method, by default the linearised Reynolds system) at
-  /// `state`, without the error estimate.
+  /// `state`, without the error estimate. The model string names the dofs and degree; each
+  /// evaluation logs one line on stderr (rank 0 of the communicator), since a level-2 sweep may
+  /// take minutes: "sealfe: level-2 film coefficients #n at rotor speed ...".
   FilmCoefficients coefficients(const FilmState &state) const override;
+  /// How many times coefficients() was called.
+  unsigned int n_coefficient_evaluations() const { return n_evaluations; }
 
   /// The solver (mesh, dofs, last solution), e.g. for n_dofs() and n_setups().
   const ReynoldsSolver &reynolds() const { return solver.reynolds(); }
@@ -38,7 +42,9 @@ public:
 
 private:
   FilmSettings base;
+  MPI_Comm comm;
   mutable CoefficientSolver solver;
+  mutable unsigned int n_evaluations = 0;
 };
 
 } // namespace sealfe

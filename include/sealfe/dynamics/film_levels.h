@@ -3,37 +3,33 @@
 // speeds drawn from it (computed once per pair).
 #pragma once
 
+#include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/coefficients/coefficient_table.h>
 #include <sealfe/dynamics/angular_dynamics.h>
 #include <sealfe/film/film_force_model.h>
+#include <sealfe/film/film_settings.h>
 
-#include <functional>
+#include <deal.II/base/mpi.h>
+
 #include <memory>
 
 namespace sealfe
 {
-/// The level-2 coefficient producer the application supplies today (a CoefficientSolver on
-/// MPI_COMM_SELF): the coefficients of a film and operating point.
-/// TODO(FiniteElementFilm): remove once coefficients/finite_element_film.h lands; level 2 is then
-/// built in make_film_force_model from FilmSettings + MPI_Comm (see FilmLevelSources).
-using FilmCoefficientProvider = std::function<FilmCoefficients(
-    const FilmThickness &film, const OperatingConditions &conditions)>;
-
 /// What a level needs beyond the seal: level 1 the table (read beforehand), level 2 the
-/// finite-element film.
-/// TODO(FiniteElementFilm): replace `finite_element` by `FilmSettings finite_element;` and
-/// `MPI_Comm comm = MPI_COMM_SELF;` and build `std::make_shared<FiniteElementFilm>(finite_element,
-/// comm)` in make_film_force_model (the only place that knows the hook).
+/// finite-element solver's settings (its geometry and operating conditions are replaced by the
+/// seal's) and the communicator of its solves.
 struct FilmLevelSources
 {
   std::shared_ptr<const CoefficientTable> table;
   std::string table_name; ///< the table's file, for descriptions
-  FilmCoefficientProvider finite_element;
+  FilmSettings film_solver;
+  CoefficientSettings coefficient_method;
+  MPI_Comm comm = MPI_COMM_SELF;
 };
 
 /// The FilmForceModel of `level` for the seal `geometry`, `operating`: NarrowSealFilm (level 0),
-/// TableFilm (level 1, needs sources.table), the finite-element film (level 2, needs
-/// sources.finite_element). Throws std::runtime_error (one line) when the level cannot be built.
+/// TableFilm (level 1, needs sources.table), FiniteElementFilm (level 2, on sources.film_solver
+/// and sources.comm). Throws std::runtime_error (one line) when the level cannot be built.
 std::shared_ptr<const FilmForceModel> make_film_force_model(FilmLevel level,
                                                             const FilmThickness &geometry,
                                                             const OperatingConditions &operating,

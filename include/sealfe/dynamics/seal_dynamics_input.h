@@ -3,6 +3,7 @@
 // seal dynamics built from it.
 #pragma once
 
+#include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/coefficients/coefficient_table.h>
 #include <sealfe/dynamics/angular_dynamics.h>
 #include <sealfe/dynamics/film_levels.h>
@@ -10,6 +11,7 @@
 #include <sealfe/dynamics/shared_cache.h>
 #include <sealfe/dynamics/speed_interpolated_film.h>
 #include <sealfe/film/film_force_model.h>
+#include <sealfe/film/film_settings.h>
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
 
@@ -37,20 +39,23 @@ struct SealDynamicsInput
   /// Level 2: number of swept speeds at which the FE coefficients are computed for a sweep
   /// (SpeedInterpolatedFilm); 0 = an FE computation at every speed the sweep asks for.
   unsigned int film_speed_nodes = 9;
-  /// Level 2: the FE producer, supplied by the application (not read from the prm).
-  /// TODO(FiniteElementFilm): FilmSettings read from the prm instead (film_levels.h).
-  FilmCoefficientProvider finite_element;
+  /// Level 2: the finite-element solver (subsections Discretization, Cavitation, Roughness,
+  /// Contact; its geometry and operating conditions are this input's) and the coefficient method
+  /// (subsection Coefficients). Its solves run on MPI_COMM_SELF.
+  FilmSettings film_solver;
+  CoefficientSettings coefficient_method;
 
   /// Declares subsection "Seal dynamics" with its subsections "Rotor ring" and "Stator ring".
   /// Defaults: the FMS seal on a flexible rotor of Varney & Green (Varney & Green (2017) Tables
   /// 1-2).
   static void declare_parameters(dealii::ParameterHandler &prm);
-  /// Reads "Seal dynamics", "Geometry" and "Operating conditions".
+  /// Reads "Seal dynamics", "Geometry" and "Operating conditions", and for Film model = finite
+  /// element the solver's subsections (declared by CoefficientSolver::declare_parameters; a
+  /// one-line error says so when they are missing).
   void parse_parameters(dealii::ParameterHandler &prm);
   /// One-line std::runtime_error naming the parameter for impossible input, for configurations
   /// whose speeds do not fit (FMS with flexible rotor: the stator does not spin), for a table
-  /// that cannot be read or is not this seal's, and for level 2 without a producer. Makes no FE
-  /// solve.
+  /// that cannot be read or is not this seal's. Makes no FE solve.
   void validate() const;
   /// The FilmForceModel of the chosen level for this seal (film_levels.h): NarrowSealFilm,
   /// TableFilm (the table read once and shared by copies of this input) or the finite-element
@@ -80,5 +85,12 @@ private:
   std::shared_ptr<const CoefficientTable> table() const;
   SharedCache<std::string, std::shared_ptr<const CoefficientTable>> tables;
 };
+
+/// The speed sweep of a dynamics study, in the current subsection: "Speed from", "Speed to"
+/// (rad/s) and "Speed points" (at least 2), with these defaults and the documentation of the
+/// points. The swept ring is chosen by the study's "Swept speed".
+void declare_speed_sweep(dealii::ParameterHandler &prm, const std::string &from,
+                         const std::string &to, const std::string &points,
+                         const std::string &points_documentation);
 
 } // namespace sealfe

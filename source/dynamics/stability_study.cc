@@ -1,5 +1,6 @@
-#include <sealfe/applications/stability.h>
 #include <sealfe/dynamics/seal_dynamics_input.h>
+#include <sealfe/dynamics/stability_study.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <cmath>
 #include <fstream>
@@ -18,12 +19,14 @@ void declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Swept speed", "Rotor speed", Selection("Rotor speed|Stator speed"),
                     "Which ring's speed is swept for the stable range; the other keeps its value "
                     "from Operating conditions.");
-  prm.declare_entry("Sweep from", "-20000", Double(), "Lowest swept speed (rad/s).");
-  prm.declare_entry("Sweep to", "20000", Double(), "Highest swept speed (rad/s).");
-  prm.declare_entry("Grid points", "801", Integer(2),
-                    "Speeds at which stability is evaluated before each change of verdict is "
-                    "refined by bisection; a stable or unstable band narrower than the spacing "
-                    "can be missed.");
+  declare_speed_sweep(prm, "-20000", "20000", "801",
+                      "Speeds at which stability is evaluated before each change of verdict is "
+                      "refined by bisection; a stable or unstable band narrower than the spacing "
+                      "can be missed.");
+  // The names before the two studies shared one vocabulary (old parameter files keep working).
+  prm.declare_alias("Speed from", "Sweep from");
+  prm.declare_alias("Speed to", "Sweep to");
+  prm.declare_alias("Speed points", "Grid points");
   prm.declare_entry("Criterion", "eigenvalues", Selection("eigenvalues|Routh-Hurwitz"),
                     "Stability test for the sweep: eigenvalues of the first-order system "
                     "(LAPACK; any film) or the Hurwitz determinants of Wileman & Green Appendix B "
@@ -33,8 +36,9 @@ void declare_parameters(dealii::ParameterHandler &prm)
                     Selection("none|" + SealDynamicsInput::parameter_names()),
                     "Optional study: the stable range is recomputed for each of the Second "
                     "parameter values and written to stability_sweep.csv.");
-  prm.declare_entry("Second parameter values", "", List(Double()),
-                    "Comma-separated values (SI units) of the second parameter.");
+  prm.declare_entry("Second parameter values", "", Anything(),
+                    "Values (SI units) of the second parameter: a list 'a, b, c' (used in "
+                    "ascending order) or a range 'start : stop : count'.");
   prm.declare_entry("Hold normalized coning", "true", Bool(),
                     "When the second parameter is Clearance, scale Coning with it so that "
                     "beta* ro / C0 stays fixed (as Wileman & Green's Table 1 did).");
@@ -75,20 +79,18 @@ nlohmann::json pick_range(const std::vector<AngularSealDynamics::SpeedInterval> 
 }
 } // namespace
 
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
-                   const FilmCoefficientProvider &finite_element)
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory)
 {
   SealDynamicsInput input;
   input.parse_parameters(prm);
-  input.finite_element = finite_element;
   input.validate();
 
   prm.enter_subsection("Stability");
   const std::string swept_name = prm.get("Swept speed");
   Sweep sweep{swept_name == "Rotor speed" ? AngularSealDynamics::SweptRing::rotor
                                           : AngularSealDynamics::SweptRing::stator,
-              prm.get_double("Sweep from"), prm.get_double("Sweep to"),
-              static_cast<unsigned int>(prm.get_integer("Grid points")),
+              prm.get_double("Speed from"), prm.get_double("Speed to"),
+              static_cast<unsigned int>(prm.get_integer("Speed points")),
               prm.get("Criterion") == "eigenvalues"
                   ? AngularSealDynamics::Criterion::eigenvalues
                   : AngularSealDynamics::Criterion::routh_hurwitz};
@@ -100,18 +102,14 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   if (!std::isfinite(sweep.from) || !std::isfinite(sweep.to) || !(sweep.to > sweep.from))
   {
     std::ostringstream s;
-    s << "Stability: Sweep to (" << sweep.to << " rad/s) must be greater than Sweep from ("
+    s << "Stability: Speed to (" << sweep.to << " rad/s) must be greater than Speed from ("
       << sweep.from << " rad/s)";
     throw std::runtime_error(s.str());
   }
   std::vector<double> values;
   if (second != "none")
   {
-    std::istringstream in(second_values);
-    std::string item;
-    while (std::getline(in, item, ','))
-      if (item.find_first_not_of(" \t") != std::string::npos)
-        values.push_back(std::stod(item));
+    values = numerics::parse_number_list(second_values, "Stability: Second parameter values");
     if (values.empty())
       throw std::runtime_error("Stability: Second parameter = " + second +
                                " needs a list of Second parameter values");

@@ -16,11 +16,6 @@
 
 namespace sealfe
 {
-/// Values of one swept quantity from its prm text: a list "a, b, c" (any order, sorted on use)
-/// or a range "start : stop : count" (count equally spaced values, both ends included). Empty
-/// text gives no values (the quantity is not swept). Throws std::runtime_error naming `parameter`.
-std::vector<double> parse_sweep_values(const std::string &text, const std::string &parameter);
-
 /// The operating points of a sweep: the tensor-product grid of the swept quantities about a base
 /// point, and `n_check` held-out points at the centres of grid cells spread over the grid (used
 /// only to report the interpolation error of the table).

@@ -1,4 +1,4 @@
-#include <sealfe/applications/transient.h>
+#include <sealfe/dynamics/transient_study.h>
 #include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/dynamics/closed_form_transient_film.h>
 #include <sealfe/dynamics/equilibrium.h>

@@ -2,8 +2,6 @@
 // static and dynamic misalignments over a speed range (tilts, relative tilt, contact margin).
 #pragma once
 
-#include <sealfe/dynamics/film_levels.h>
-
 #include <deal.II/base/parameter_handler.h>
 
 #include <nlohmann/json.hpp>
@@ -28,9 +26,8 @@ void declare_parameters(dealii::ParameterHandler &prm);
 /// contact_tilt, peak_relative_tilt, speed_at_peak_relative_tilt, min_contact_margin, contact,
 /// contact_speed_ranges, unstable_speed_ranges, rotor_critical_speed, files, plot.
 ///
-/// `finite_element` produces the level-2 coefficients (Film model = finite element; the
-/// application passes a CoefficientSolver on MPI_COMM_SELF); unused at levels 0 and 1.
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
-                   const FilmCoefficientProvider &finite_element = {});
+/// Film model = finite element needs the solver's subsections declared as well
+/// (CoefficientSolver::declare_parameters); the FE solves run on MPI_COMM_SELF.
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory);
 } // namespace response
 } // namespace sealfe

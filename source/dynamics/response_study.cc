@@ -1,4 +1,4 @@
-#include <sealfe/applications/response.h>
+#include <sealfe/dynamics/response_study.h>
 #include <sealfe/dynamics/seal_dynamics_input.h>
 #include <sealfe/io/python_plot.h>
 
@@ -20,9 +20,7 @@ void declare_parameters(dealii::ParameterHandler &prm)
   prm.enter_subsection("Forced response");
   prm.declare_entry("Swept speed", "Rotor speed", Selection("Rotor speed|Stator speed"),
                     "Which ring's speed is swept; the other keeps its Operating conditions value.");
-  prm.declare_entry("Speed from", "10", Double(), "First speed of the sweep (rad/s).");
-  prm.declare_entry("Speed to", "5000", Double(), "Last speed of the sweep (rad/s).");
-  prm.declare_entry("Speed points", "500", Integer(2), "Number of speeds (equally spaced).");
+  declare_speed_sweep(prm, "10", "5000", "500", "Number of speeds (equally spaced).");
   prm.declare_entry("Plot", "true", Bool(),
                     "Write response.png (relative tilt against speed with the contact limit) "
                     "with scripts/plot_response.py, if python3 with matplotlib is found.");
@@ -53,12 +51,10 @@ nlohmann::json runs(const std::vector<double> &speeds, const std::vector<bool> &
 }
 } // namespace
 
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
-                   const FilmCoefficientProvider &finite_element)
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory)
 {
   SealDynamicsInput input;
   input.parse_parameters(prm);
-  input.finite_element = finite_element;
   input.validate();
   prm.enter_subsection("Forced response");
   const bool swept_rotor = prm.get("Swept speed") == "Rotor speed";

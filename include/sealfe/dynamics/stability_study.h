@@ -2,8 +2,6 @@
 // a flexible rotor): eigenvalues, Routh-Hurwitz verdict and the stable range of one ring's speed.
 #pragma once
 
-#include <sealfe/dynamics/film_levels.h>
-
 #include <deal.II/base/parameter_handler.h>
 
 #include <nlohmann/json.hpp>
@@ -15,9 +13,10 @@ namespace sealfe
 namespace stability
 {
 /// Declares subsections "Seal dynamics" (rings, configuration, film model) and "Stability" (the
-/// speed sweep and an optional second parameter). "Geometry" and "Operating conditions" are
-/// declared by the application, and so are the finite-element solver's subsections (needed for
-/// Film model = finite element).
+/// speed sweep — Speed from, Speed to, Speed points as in `sealfe response`; the former names
+/// Sweep from, Sweep to, Grid points are aliases — and an optional second parameter). "Geometry"
+/// and "Operating conditions" are declared by the application, and so are the finite-element
+/// solver's subsections (needed for Film model = finite element).
 void declare_parameters(dealii::ParameterHandler &prm);
 
 /// Reads the parsed parameters, computes, writes stability_growth_rate.csv (swept speed against
@@ -32,9 +31,8 @@ void declare_parameters(dealii::ParameterHandler &prm);
 ///   stable_intervals, undamped_thresholds (Wileman & Green Eq. 17), files.
 /// Throws std::runtime_error with one line naming the parameter on bad input.
 ///
-/// `finite_element` produces the level-2 coefficients (Film model = finite element; the
-/// application passes a CoefficientSolver on MPI_COMM_SELF); unused at levels 0 and 1.
-nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory,
-                   const FilmCoefficientProvider &finite_element = {});
+/// Film model = finite element needs the solver's subsections declared as well
+/// (CoefficientSolver::declare_parameters); the FE solves run on MPI_COMM_SELF.
+nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_directory);
 } // namespace stability
 } // namespace sealfe

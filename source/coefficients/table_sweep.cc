@@ -1,6 +1,7 @@
-#include <sealfe/applications/table_sweep.h>
 #include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/coefficients/table_sweep.h>
 #include <sealfe/io/output.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -16,58 +17,6 @@
 namespace sealfe
 {
 using namespace dealii;
-
-std::vector<double> parse_sweep_values(const std::string &text, const std::string &parameter)
-{
-  auto fail = [&](const std::string &why)
-  {
-    throw std::runtime_error("Table: '" + parameter + "' " + why + " (got '" + text +
-                             "'); use a list 'a, b, c' or a range 'start : stop : count'");
-  };
-  auto number = [&](std::string s)
-  {
-    s.erase(0, s.find_first_not_of(" \t"));
-    s.erase(s.find_last_not_of(" \t") + 1);
-    char *end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
-      fail("has '" + s + "', which is not a finite number");
-    return v;
-  };
-  std::vector<double> values;
-  if (text.find_first_not_of(" \t") == std::string::npos)
-    return values;
-  if (text.find(':') != std::string::npos)
-  {
-    std::vector<std::string> parts;
-    std::istringstream s(text);
-    std::string p;
-    while (std::getline(s, p, ':'))
-      parts.push_back(p);
-    if (parts.size() != 3)
-      fail("is not a range start : stop : count");
-    const double start = number(parts[0]), stop = number(parts[1]), count = number(parts[2]);
-    if (count < 1 || count != std::floor(count) || count > 100000)
-      fail("needs a whole count of at least 1");
-    if (count == 1 && start != stop)
-      fail("has count 1 but start != stop");
-    const unsigned int n = static_cast<unsigned int>(count);
-    for (unsigned int i = 0; i < n; ++i)
-      values.push_back(n == 1 ? start : start + (stop - start) * i / (n - 1));
-  }
-  else
-  {
-    std::istringstream s(text);
-    std::string p;
-    while (std::getline(s, p, ','))
-      values.push_back(number(p));
-  }
-  std::sort(values.begin(), values.end());
-  for (unsigned int i = 1; i < values.size(); ++i)
-    if (values[i] == values[i - 1])
-      fail("repeats the value " + std::to_string(values[i]));
-  return values;
-}
 
 SweepPlan SweepPlan::make(const OperatingPoint &base, const std::vector<Axis> &axes_in,
                           const unsigned int n_check)
@@ -256,7 +205,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   std::vector<SweepPlan::Axis> axes;
   prm.enter_subsection("Table");
   for (const auto &[entry, column] : sweepable())
-    axes.push_back({column, parse_sweep_values(prm.get(entry), entry)});
+    axes.push_back({column, numerics::parse_number_list(prm.get(entry), "Table: '" + entry + "'")});
   const std::string file = prm.get("Output file");
   const unsigned int n_check = prm.get_integer("Held-out points");
   const auto interpolation = prm.get("Interpolation") == "linear"

@@ -1,0 +1,199 @@
+#include "driver.h"
+
+#include <sealfe/film/film_thickness.h>
+#include <sealfe/film/operating_conditions.h>
+#include <sealfe/io/output.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe::applications
+{
+using namespace dealii;
+
+std::string one_line(const std::exception &e)
+{
+  std::string text;
+  if (const auto *d = dynamic_cast<const ExceptionBase *>(&e))
+  {
+    std::ostringstream s;
+    d->print_info(s);
+    text = s.str();
+  }
+  else
+    text = e.what();
+  std::string line;
+  bool space = false;
+  for (const char c : text)
+  {
+    if (std::isspace(static_cast<unsigned char>(c)))
+      space = !line.empty();
+    else
+    {
+      if (space)
+        line += ' ';
+      line += c;
+      space = false;
+    }
+  }
+  return line;
+}
+
+namespace
+{
+void declare_common(ParameterHandler &prm, const SubCommand &command)
+{
+  prm.declare_entry("Output directory", "sealfe-output", Patterns::Anything(),
+                    "Directory for summary.json, used_parameters.prm and the field/table files "
+                    "(created if needed).");
+  if (command.face_seal)
+  {
+    FilmThickness::declare_parameters(prm);
+    OperatingConditions::declare_parameters(prm);
+  }
+  command.declare(prm);
+}
+
+/// deal.II mangles entry names in its JSON output (non-alphanumerics as _XX hex).
+std::string demangle(const std::string &s)
+{
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s[i] == '_' && i + 2 < s.size() + 0 && std::isxdigit(s[i + 1]) && std::isxdigit(s[i + 2]))
+    {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    }
+    else
+      out += s[i];
+  return out;
+}
+
+/// `--print-parameters`: every entry in prm syntax with its default value, pattern and
+/// documentation (deal.II's own styles print either the defaults or the patterns, not both).
+void print_parameters(const ParameterHandler &prm, std::ostream &out)
+{
+  std::ostringstream json_text;
+  prm.print_parameters(json_text, ParameterHandler::JSON);
+  const auto json = nlohmann::json::parse(json_text.str());
+  std::function<void(const nlohmann::json &, const std::string &)> print =
+      [&](const nlohmann::json &node, const std::string &indent)
+  {
+    // entries first, then subsections; aliases (old entry names) are not printed
+    for (const auto &[key, value] : node.items())
+      if (value.contains("value"))
+      {
+        out << indent << "# " << value.value("documentation", std::string()) << "\n"
+            << indent << "#   default: " << value.value("default_value", std::string())
+            << "   pattern: " << value.value("pattern_description", std::string()) << "\n"
+            << indent << "set " << demangle(key) << " = "
+            << value.value("default_value", std::string()) << "\n\n";
+      }
+    for (const auto &[key, value] : node.items())
+      if (!value.contains("value") && !value.contains("alias"))
+      {
+        out << indent << "subsection " << demangle(key) << "\n";
+        print(value, indent + "  ");
+        out << indent << "end\n\n";
+      }
+  };
+  print(json, "");
+}
+
+void print_usage(std::ostream &out, const std::vector<SubCommand> &commands)
+{
+  out << "usage: sealfe <sub-command> [file.prm]\n"
+         "       sealfe --print-parameters [sub-command]\n\nsub-commands:\n";
+  for (const auto &c : commands)
+    out << "  " << std::left << std::setw(14) << c.name << c.purpose << "\n";
+}
+} // namespace
+
+int run_command_line(int argc, char **argv, const std::vector<SubCommand> &commands)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try
+  {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h")
+    {
+      if (root)
+        print_usage(args.empty() ? std::cerr : std::cout, commands);
+      return args.empty() ? 2 : 0;
+    }
+    auto find = [&](const std::string &name) -> const SubCommand &
+    {
+      for (const auto &c : commands)
+        if (c.name == name)
+          return c;
+      throw std::runtime_error("unknown sub-command '" + name + "' (see sealfe --help)");
+    };
+
+    if (args[0] == "--print-parameters")
+    {
+      const SubCommand &command = find(args.size() > 1 ? args[1] : "solve");
+      ParameterHandler prm;
+      declare_common(prm, command);
+      if (root)
+        print_parameters(prm, std::cout);
+      return 0;
+    }
+
+    const SubCommand &command = find(args[0]);
+    if (args.size() > 2)
+      throw std::runtime_error("too many arguments (usage: sealfe " + command.name +
+                               " [file.prm])");
+    const auto start = std::chrono::steady_clock::now();
+    ParameterHandler prm;
+    declare_common(prm, command);
+    if (args.size() == 2)
+    {
+      const std::string &file = args[1];
+      std::ifstream probe(file);
+      if (!probe)
+        throw std::runtime_error("parameter file '" + file + "' is missing or unreadable");
+      try
+      {
+        prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);
+      }
+      catch (std::exception &e)
+      {
+        throw std::runtime_error("parameter file '" + file + "': " + one_line(e));
+      }
+    }
+    const std::string directory = prm.get("Output directory");
+
+    nlohmann::json summary;
+    if (command.distributed || root)
+      summary = command.run(prm, directory, comm);
+    if (root)
+    {
+      output::make_directory(directory);
+      summary["sub_command"] = command.name;
+      summary["mpi_ranks"] = Utilities::MPI::n_mpi_processes(comm);
+      summary["wall_time"] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      output::write_used_parameters(directory, prm);
+      output::write_summary(directory, summary);
+      std::cout << "sealfe " << command.name << ": wrote " << directory << "/summary.json and "
+                << directory << "/used_parameters.prm\n";
+    }
+    return 0;
+  }
+  catch (std::exception &e)
+  {
+    if (root)
+      std::cerr << "sealfe: error: " << one_line(e) << std::endl;
+    return 1;
+  }
+}
+
+} // namespace sealfe::applications
