@@ -9,6 +9,22 @@
 
 namespace sealfe
 {
+dealii::FullMatrix<double> SecondOrderSystem::first_order_matrix() const
+{
+  const unsigned int n = mass.m();
+  dealii::FullMatrix<double> A(2 * n, 2 * n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    A(i, n + i) = 1;
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      A(n + i, j) = -stiffness(i, j) / mass(i, i);
+      A(n + i, n + j) = -damping(i, j) / mass(i, i);
+    }
+  }
+  return A;
+}
+
 using cplx = std::complex<double>;
 
 AngularSealDynamics::AngularSealDynamics(const SealConfiguration configuration,
@@ -129,17 +145,8 @@ std::vector<cplx> AngularSealDynamics::eigenvalues(const double rotor_speed,
 {
   const SecondOrderSystem s = matrices(rotor_speed, stator_speed);
   const unsigned int n = s.mass.m();
-  // First-order form y = (q, q_dot): y_dot = [[0, 1], [-M^-1 K, -M^-1 C]] y; M is diagonal.
   dealii::LAPACKFullMatrix<double> A(2 * n, 2 * n);
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    A(i, n + i) = 1;
-    for (unsigned int j = 0; j < n; ++j)
-    {
-      A(n + i, j) = -s.stiffness(i, j) / s.mass(i, i);
-      A(n + i, n + j) = -s.damping(i, j) / s.mass(i, i);
-    }
-  }
+  A = s.first_order_matrix();
   A.compute_eigenvalues();
   std::vector<cplx> lambda(2 * n);
   for (unsigned int i = 0; i < 2 * n; ++i)

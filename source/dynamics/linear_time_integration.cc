@@ -22,17 +22,8 @@ integrate_linear_system(const SecondOrderSystem &s,
 {
   using Vec = dealii::Vector<double>;
   const unsigned int n = s.mass.m();
-  // y = (q, q_dot), y_dot = J y + (0, M^-1 f(t)) with J = [[0, 1], [-M^-1 K, -M^-1 C]]
-  dealii::FullMatrix<double> J(2 * n, 2 * n);
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    J(i, n + i) = 1;
-    for (unsigned int j = 0; j < n; ++j)
-    {
-      J(n + i, j) = -s.stiffness(i, j) / s.mass(i, i);
-      J(n + i, n + j) = -s.damping(i, j) / s.mass(i, i);
-    }
-  }
+  // y = (q, q_dot), y_dot = J y + (0, M^-1 f(t))
+  const dealii::FullMatrix<double> J = s.first_order_matrix();
 
   dealii::SUNDIALS::ARKode<Vec>::AdditionalData data(0.0, t_end, 1e-6 * t_end, t_end, 0.0, 5, 10,
                                                      true, true, true, 3, absolute_tolerance,

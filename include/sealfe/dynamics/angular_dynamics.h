@@ -41,6 +41,9 @@ struct TiltFilm
 struct SecondOrderSystem
 {
   dealii::FullMatrix<double> mass, damping, stiffness;
+  /// The first-order form y = (q, q_dot), y_dot = A y + (0, M^-1 f): A = [[0, 1], [-M^-1 K,
+  /// -M^-1 C]] (M is diagonal: each dof is one ring's tilt component).
+  dealii::FullMatrix<double> first_order_matrix() const;
 };
 
 /// Angular dynamics of one or two rings coupled by the film (Wileman & Green Eq. 2, Varney & Green
