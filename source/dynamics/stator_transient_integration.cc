@@ -56,13 +56,9 @@ StatorTransient::Result StatorTransient::run() const
   dealii::SUNDIALS::ARKode<Vec> ode(data);
   ode.implicit_function = scaled_rate;
 
-  // Jacobian of the scaled rate by forward differences. It is rebuilt only at ARKode's
-  // linear-solver setups with jok = false (the preconditioner setup: ARKode decides, from the
-  // step count, the change of gamma and Newton failures, when the Jacobian is stale); the
-  // Jacobian-times-vector setup, which ARKode calls at *every* linear solve, must not rebuild it
-  // (it did: 150 film evaluations per step).
+  // Jacobian of the scaled rate by forward differences, rebuilt at ARKode's Jacobian updates
   dealii::FullMatrix<double> J(n, n), A(n, n);
-  auto rebuild_jacobian = [&](const double t, const Vec &y, const Vec &fy) -> int
+  ode.jacobian_times_setup = [&](const double t, const Vec &y, const Vec &fy) -> int
   {
     ++result.jacobian_setups;
     Vec yp(y), fp(n);
@@ -78,29 +74,11 @@ StatorTransient::Result StatorTransient::run() const
     }
     return 0;
   };
-  ode.jacobian_preconditioner_setup = [&](const double t, const Vec &y, const Vec &fy,
-                                          const int jok, int &jcur, const double) -> int
-  {
-    jcur = 0;
-    if (jok)
-      return 0;
-    jcur = 1;
-    return rebuild_jacobian(t, y, fy);
-  };
-  // the linear solve below is direct; the preconditioner is the identity
-  ode.jacobian_preconditioner_solve = [&](double, const Vec &, const Vec &, const Vec &r, Vec &z,
-                                          double, double, int) -> int
-  {
-    z = r;
-    return 0;
-  };
   ode.jacobian_times_vector = [&](const Vec &v, Vec &Jv, double, const Vec &, const Vec &) -> int
   {
     J.vmult(Jv, v);
     return 0;
   };
-  // (M - gamma J) assembled column by column from ARKode's operator (it holds the current
-  // gamma; no film evaluation) and solved directly
   ode.solve_linearized_system = [&](dealii::SUNDIALS::SundialsOperator<Vec> &op,
                                     dealii::SUNDIALS::SundialsPreconditioner<Vec> &, Vec &x,
                                     const Vec &b, double) -> int
