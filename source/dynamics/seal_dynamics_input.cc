@@ -1,5 +1,7 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -277,28 +279,19 @@ void SealDynamicsInput::set(const std::string &name, const double value,
       return false;
     return true;
   };
-  if (name == "Clearance")
+  const auto &film_names = FilmSettings::settable_names();
+  if (std::find(film_names.begin(), film_names.end(), name) != film_names.end())
   {
-    if (hold_normalized_coning)
+    // The film's quantities through the film's one name -> field map.
+    if (name == "Clearance" && hold_normalized_coning)
       geometry.coning *= value / geometry.clearance;
-    geometry.clearance = value;
+    FilmSettings film = film_solver;
+    film.geometry = geometry;
+    film.conditions = operating;
+    film.set(name, value);
+    geometry = film.geometry;
+    operating = film.conditions;
   }
-  else if (name == "Coning")
-    geometry.coning = value;
-  else if (name == "Inner radius")
-    geometry.inner_radius = value;
-  else if (name == "Outer radius")
-    geometry.outer_radius = value;
-  else if (name == "Inner pressure")
-    operating.inner_pressure = value;
-  else if (name == "Outer pressure")
-    operating.outer_pressure = value;
-  else if (name == "Viscosity")
-    operating.viscosity = value;
-  else if (name == "Rotor speed")
-    operating.rotor_speed = value;
-  else if (name == "Stator speed")
-    operating.stator_speed = value;
   else if (!((name.rfind("Rotor ring ", 0) == 0 && ring(rotor, name.substr(11))) ||
              (name.rfind("Stator ring ", 0) == 0 && ring(stator, name.substr(12)))))
     throw std::runtime_error("Seal dynamics: unknown parameter '" + name + "' (one of " +
