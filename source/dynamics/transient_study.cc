@@ -1,7 +1,7 @@
-#include <sealfe/dynamics/transient_study.h>
 #include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/dynamics/closed_form_transient_film.h>
 #include <sealfe/dynamics/equilibrium.h>
+#include <sealfe/dynamics/transient_study.h>
 #include <sealfe/film/cavitation.h>
 #include <sealfe/io/output.h>
 

@@ -4,8 +4,8 @@
 // interpolant's order (2 multilinear, 4 cubic) as the grid is refined; grid values and functions
 // the interpolant reproduces must come back to round-off; a failed point must not spoil the rest;
 // malformed tables and queries outside the table are refused with a clear message.
-#include <sealfe/coefficients/coefficient_table.h>
 #include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/coefficients/coefficient_table.h>
 
 #include <gtest/gtest.h>
 
@@ -244,7 +244,8 @@ TEST(CoefficientTable, ReproducesGridValuesAndLinearDependence)
 TEST(CoefficientTable, TwoRotatingRingsAreAnsweredAtTheirMeanSpeed)
 {
   // An FMS table (stator at rest) answers an FMRR query through the mean speed: K and D depend
-  // on the ring speeds only through (omega1 + omega2)/2 (Wileman & Green: D11 = (omega1 + omega2)/2 d11).
+  // on the ring speeds only through (omega1 + omega2)/2 (Wileman & Green: D11 = (omega1 + omega2)/2
+  // d11).
   const auto table = CoefficientTable::from_text(
       table_text(linspace(0.8e-6, 1.6e-6, 5), linspace(-4000, 4000, 9)), "synthetic");
   OperatingPoint p = base_point();

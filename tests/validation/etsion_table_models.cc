@@ -143,8 +143,8 @@ double closed_form(const Row &row, const int column)
   }
 }
 
-/// The entries of Table I that are misprinted (in the OCR text of the paper, which matches the scanned
-/// report's digits as far as the scan shows: a 3/8 or 4/9 type confusion in each case).
+/// The entries of Table I that are misprinted (in the OCR text of the paper, which matches the
+/// scanned report's digits as far as the scan shows: a 3/8 or 4/9 type confusion in each case).
 struct Misprint
 {
   int row; // 1..80
@@ -350,8 +350,8 @@ TEST(EtsionTableI, TouchDownLimits)
   }
 }
 
-// The equations as printed (Etsion (1977)) cannot be what produced Table I: evaluated literally they
-// miss it by orders of magnitude; the corrections (doc/narrow_seal.md) reproduce it.
+// The equations as printed (Etsion (1977)) cannot be what produced Table I: evaluated literally
+// they miss it by orders of magnitude; the corrections (doc/narrow_seal.md) reproduce it.
 //  Eq. 29: 1/(2 eps) for 1/(2 eps^2);  Eq. 43: (1/2) ln[(1-eps^2)/(1-eps Ri^2)] for
 //  (1/eps^2) ln[(1-eps^2)/(1-eps^2 Ri^2)];  Eq. 56: pi/(2 eps) for pi/(2 eps^2);
 //  Eq. 58: pi/2 for pi/eps^2 and (1 - eps^2) for sqrt(1 - eps^2);  Eq. 52: -Ri^2 for +Ri^2.

@@ -6,8 +6,8 @@
 //  - Green & Etsion's narrow-seal k11, d11 and (omega/2) d11 as ri/ro -> 1, and on the Varney &
 //    Green seal;
 //  - the symmetries of an axisymmetric film, and the FMRR speeds (Wileman & Green).
-#include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/coefficients/coefficient_solver.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -509,9 +509,9 @@ TEST(FilmCoefficientsFE, AxisymmetricFilmIsIsotropicAndAxialDecouples)
 
 TEST(FilmCoefficientsFE, TwoRotatingRingsGiveTheFMRRCrossCoupling)
 {
-  // Wileman & Green: the film's direct stiffness k11 and damping d11 do not depend on the ring speeds;
-  // the cross-coupled stiffness is D11 = (omega1 + omega2)/2 d11. The FE operator sees the ring
-  // speeds only through the mean surface speed, and at an axisymmetric equilibrium a tilt
+  // Wileman & Green: the film's direct stiffness k11 and damping d11 do not depend on the ring
+  // speeds; the cross-coupled stiffness is D11 = (omega1 + omega2)/2 d11. The FE operator sees the
+  // ring speeds only through the mean surface speed, and at an axisymmetric equilibrium a tilt
   // perturbation's Couette term omega_m d(dh)/dtheta equals a tilt-rate squeeze term, so
   // c = omega_m d up to the quadrature error of that identity.
   const FilmThickness film;

@@ -1,6 +1,6 @@
 // Level-0 film coefficients (Green & Etsion narrow seal) against an independent quadrature of the
-// narrow-seal pressures of Varney & Green (Varney & Green (2017) Eq. 12 and 14), and the verdict on the seal
-// parameter S: (1 - Ri)^2 (Wileman & Green) or (1 - Ri^2) (Varney & Green (2017) Eq. 21).
+// narrow-seal pressures of Varney & Green (Varney & Green (2017) Eq. 12 and 14), and the verdict on
+// the seal parameter S: (1 - Ri)^2 (Wileman & Green) or (1 - Ri^2) (Varney & Green (2017) Eq. 21).
 #include <sealfe/closed_form/green_etsion.h>
 
 #include <gtest/gtest.h>
@@ -137,7 +137,8 @@ GreenEtsionCoefficients closed_form(const Seal &s)
   return GreenEtsionCoefficients(s.ri, s.ro, s.c0, s.beta, s.mu, s.p_out - s.p_in);
 }
 
-// Varney & Green (2017) Table 1 (Varney & Green) and Wileman & Green's reference seal (Wileman & Green).
+// Varney & Green (2017) Table 1 (Varney & Green) and Wileman & Green's reference seal (Wileman &
+// Green).
 Seal varney_green()
 {
   return {0.0355, 0.0408, 1e-6, 1e-3, 1.2e-3, 0, 4e5, 1000};
@@ -216,8 +217,8 @@ TEST(GreenEtsion, AnnulusQuadratureWithinNarrowSealBounds)
   }
 }
 
-// The S verdict, on both papers' seals: the quadrature of Varney & Green (2017)'s own Eq. 14 (true annulus)
-// against d11 = 2 pi Rm^3 G0 S ro^4 / (C0 omega) with each printed S.
+// The S verdict, on both papers' seals: the quadrature of Varney & Green (2017)'s own Eq. 14 (true
+// annulus) against d11 = 2 pi Rm^3 G0 S ro^4 / (C0 omega) with each printed S.
 TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
 {
   for (const Seal &s : {varney_green(), wileman_green()})
@@ -226,7 +227,8 @@ TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
     coefficients(s, Arms::annulus, K, D);
     const GreenEtsionCoefficients g = closed_form(s);
     const double Ri = s.ri / s.ro, Rm = 0.5 * (1 + Ri), omega = 1000;
-    const double S_wileman_green = 6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * std::pow(1 - Ri, 2);
+    const double S_wileman_green =
+        6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * std::pow(1 - Ri, 2);
     const double S_varney_green = 6 * s.mu * omega * std::pow(s.ro / s.c0, 2) * (1 - Ri * Ri);
     auto d11 = [&](double S)
     {
@@ -235,7 +237,8 @@ TEST(GreenEtsion, SealParameterCarriesOneMinusRiSquaredNotOneMinusRiSquare)
     };
     const double rm = 0.5 * (s.ri + s.ro);
     const double lo = std::pow(s.ri / rm, 3), hi = std::pow(s.ro / rm, 3);
-    const double ratio000 = D[1][1] / d11(S_wileman_green), ratio002 = D[1][1] / d11(S_varney_green);
+    const double ratio000 = D[1][1] / d11(S_wileman_green),
+                 ratio002 = D[1][1] / d11(S_varney_green);
     RecordProperty(s.ri > 0.035 ? "varney_green_ratio_S000" : "wileman_green_ratio_S000",
                    std::to_string(ratio000));
     RecordProperty(s.ri > 0.035 ? "varney_green_ratio_S002" : "wileman_green_ratio_S002",
@@ -273,9 +276,9 @@ TEST(GreenEtsion, FlatFaceLimits)
   EXPECT_NEAR(D[1][1] / d_flat, 1, 1e-9);
 }
 
-// Wileman & Green: "The maximum angular fluid stiffness occurs when beta = 12.5, which corresponds to a
-// dimensional coning angle of 3.13 milliradians" (Ri = 0.8, ro = 0.04 m, C0 = 10 um). From
-// k11 ~ (beta Ri - 1)/(2 + beta (1 - Ri))^2 the optimum is beta = 2 / (Ri (1 - Ri)).
+// Wileman & Green: "The maximum angular fluid stiffness occurs when beta = 12.5, which corresponds
+// to a dimensional coning angle of 3.13 milliradians" (Ri = 0.8, ro = 0.04 m, C0 = 10 um). From k11
+// ~ (beta Ri - 1)/(2 + beta (1 - Ri))^2 the optimum is beta = 2 / (Ri (1 - Ri)).
 TEST(GreenEtsion, StiffestConingOfWilemanGreenSeal)
 {
   Seal s = wileman_green();

@@ -1,6 +1,6 @@
-// FMS seal on a flexible rotor (Varney & Green, Varney & Green (2017)): the analytic forced response
-// (Appendix B) against a direct solve and a time integration (SUNDIALS ARKode) of Eq. 24-27, the
-// rotor critical speed, and the paper's qualitative findings.
+// FMS seal on a flexible rotor (Varney & Green, Varney & Green (2017)): the analytic forced
+// response (Appendix B) against a direct solve and a time integration (SUNDIALS ARKode) of Eq.
+// 24-27, the rotor critical speed, and the paper's qualitative findings.
 #include <sealfe/closed_form/green_etsion.h>
 #include <sealfe/dynamics/seal_dynamics.h>
 
@@ -15,7 +15,8 @@ using namespace sealfe;
 
 namespace
 {
-/// Varney & Green (2017) Tables 1 and 2; delta = I_tr / I_pr, ratio = I_tr / I_ts (I_tr held at 0.2 kg m^2).
+/// Varney & Green (2017) Tables 1 and 2; delta = I_tr / I_pr, ratio = I_tr / I_ts (I_tr held at 0.2
+/// kg m^2).
 AngularSealDynamics varney_green(const double delta, const double ratio = 0.2 / 1.7e-3,
                                  const double chi = 0.5e-3, const double chi_s = 0,
                                  const double gamma_si = 0, const double Kr = 5e5)
@@ -153,10 +154,10 @@ TEST(VarneyGreen, TimeIntegrationReachesAnalyticSteadyState)
   }
 }
 
-// Varney & Green (2017) reports the rotor's forward critical speed at 990 rad/s. With Table 2 as printed
-// (K_r = 5e5 N m/rad, I_tr = 0.2, I_pr = 0.1 kg m^2 for delta = 2) the rotor alone has its forward
-// synchronous critical speed at sqrt(K_r/(I_tr - I_pr)) = 2236 rad/s. Coupled to the seal the
-// peak of the rotor tilt lies between the rigidly riding stator's sqrt((K_r + K_s)/(I_tr - I_pr
+// Varney & Green (2017) reports the rotor's forward critical speed at 990 rad/s. With Table 2 as
+// printed (K_r = 5e5 N m/rad, I_tr = 0.2, I_pr = 0.1 kg m^2 for delta = 2) the rotor alone has its
+// forward synchronous critical speed at sqrt(K_r/(I_tr - I_pr)) = 2236 rad/s. Coupled to the seal
+// the peak of the rotor tilt lies between the rigidly riding stator's sqrt((K_r + K_s)/(I_tr - I_pr
 // + I_ts)) and the rotor-alone peak of this omega^2-forced, damped mode, w_n/sqrt(1 - 2 zeta^2).
 // K_r = 1e5 N m/rad reproduces the paper's 990 rad/s (I_tr/I_ts = 50, Fig. 6).
 TEST(VarneyGreen, RotorCriticalSpeed)
@@ -270,9 +271,9 @@ TEST(VarneyGreen, FaceContactNearCriticalSpeed)
 // ---------------------------------------------------------------------------------------------
 // `sealfe response` front end, on the example prm/response.prm (Fig. 6: delta = 2,
 // I_tr/I_ts = 50, chi = 0.5 mrad).
+#include <sealfe/dynamics/response_study.h>
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
-#include <sealfe/dynamics/response_study.h>
 
 #include <filesystem>
 #include <fstream>

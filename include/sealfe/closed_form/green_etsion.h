@@ -11,7 +11,8 @@ namespace sealfe
 /// Narrow-seal (ri/ro -> 1) linearised coefficients of a coned face pair about the untilted
 /// equilibrium, full film (the hydrostatic pressure is assumed to suppress cavitation).
 ///
-/// Nomenclature of Wileman & Green (Wileman & Green) with R = r/ro, beta = beta* ro/C0, x = beta (1-Ri):
+/// Nomenclature of Wileman & Green (Wileman & Green) with R = r/ro, beta = beta* ro/C0, x = beta
+/// (1-Ri):
 ///   E0 = (1 - Ri) Rm / (2 + x)
 ///   G0 = [ln(1 + x) - 2x/(2 + x)] / (beta^3 (1 - Ri)^2)
 ///   S  = 6 mu omega_ref (ro/C0)^2 (1 - Ri)^2
@@ -20,17 +21,17 @@ namespace sealfe
 ///       = 12 pi mu Rm^3 G0 (1 - Ri)^2 ro^6 / C0^3                   [N m s/rad]
 ///   cross-coupled stiffness c = (omega1 + omega2)/2 d11
 ///
-/// S carries (1 - Ri)^2, as in Wileman & Green. Varney & Green (2017) (Varney & Green Eq. 21) prints (1 - Ri^2): a
-/// typo. The narrow-seal squeeze moment of a flat face is d11 = pi mu rm^3 (ro - ri)^3 / C0^3
-/// (tilt rate gamma_dot squeezes the film by gamma_dot r cos(theta), p = -6 mu h_dot (ro - r)(r -
-/// ri)/C0^3, moment arm r cos(theta)), and the G0 above tends to (1 - Ri)/12 as beta -> 0, so only
-/// (1 - Ri)^2 in S gives pi mu rm^3 (ro - ri)^3 / C0^3; (1 - Ri^2) would be (1 + Ri)/(1 - Ri)
-/// times too large (9x for Ri = 0.8). tests/validation/green_etsion_models.cc checks this by
-/// quadrature of Varney & Green (2017)'s own pressure (Eq. 14).
+/// S carries (1 - Ri)^2, as in Wileman & Green. Varney & Green (2017) (Varney & Green Eq. 21)
+/// prints (1 - Ri^2): a typo. The narrow-seal squeeze moment of a flat face is d11 = pi mu rm^3 (ro
+/// - ri)^3 / C0^3 (tilt rate gamma_dot squeezes the film by gamma_dot r cos(theta), p = -6 mu h_dot
+/// (ro - r)(r - ri)/C0^3, moment arm r cos(theta)), and the G0 above tends to (1 - Ri)/12 as beta
+/// -> 0, so only (1 - Ri)^2 in S gives pi mu rm^3 (ro - ri)^3 / C0^3; (1 - Ri^2) would be (1 +
+/// Ri)/(1 - Ri) times too large (9x for Ri = 0.8). tests/validation/green_etsion_models.cc checks
+/// this by quadrature of Varney & Green (2017)'s own pressure (Eq. 14).
 ///
-/// Both closed forms are the exact moments of the narrow-seal pressures (Varney & Green (2017) Eq. 12 and 14)
-/// with the moment arm r^2 (resp. r^3) replaced by rm^2 (rm^3): exact as Ri -> 1, with a relative
-/// error O((1 - Ri)^2) otherwise. In dimensional form
+/// Both closed forms are the exact moments of the narrow-seal pressures (Varney & Green (2017) Eq.
+/// 12 and 14) with the moment arm r^2 (resp. r^3) replaced by rm^2 (rm^3): exact as Ri -> 1, with a
+/// relative error O((1 - Ri)^2) otherwise. In dimensional form
 ///   k11 = pi (po - pi) rm^2 L^2 (beta* ri - C0) / (2 C0 + beta* L)^2,      L = ro - ri,
 /// so the film restores (k11 > 0) only if beta* ri > C0 with po > pi: a flat face is
 /// destabilising, because a tilt cones the dam locally and the converging side carries more

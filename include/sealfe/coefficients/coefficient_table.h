@@ -1,5 +1,6 @@
 // CoefficientTable: film coefficients interpolated from a table of finite-element results over a
-// grid of operating points (level 1 of doc/reynolds.md, Levels), read from the CSV that `sealfe table` writes.
+// grid of operating points (level 1 of doc/reynolds.md, Levels), read from the CSV that `sealfe
+// table` writes.
 #pragma once
 
 #include <sealfe/film/film_coefficients.h>
