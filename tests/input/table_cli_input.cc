@@ -1,5 +1,7 @@
 // `sealfe table` and `sealfe coefficients` through the command line: bad input is refused with one
 // line on stderr naming the entry, a non-zero exit status and no summary.json.
+#include "../sealfe_cli.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,41 +15,15 @@ namespace fs = std::filesystem;
 
 namespace
 {
-struct Result
-{
-  int status;
-  std::string out, err;
-};
+using Result = sealfe::testing::CliResult;
+using sealfe::testing::read_file;
+using sealfe::testing::run_sealfe;
 
 fs::path work_dir(const std::string &name)
 {
-  const fs::path d = fs::temp_directory_path() / ("sealfe_table_cli_input_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return sealfe::testing::fresh_directory("sealfe_table_cli_input_" + name);
 }
 
-std::string read(const fs::path &f)
-{
-  std::ifstream in(f);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `sealfe <command> case.prm` in `dir` with the prm body (Output directory set).
-Result run(const fs::path &dir, const std::string &command, const std::string &body)
-{
-  const fs::path prm = dir / "case.prm";
-  {
-    std::ofstream out(prm);
-    out << "set Output directory = " << (dir / "out").string() << "\n" << body;
-  }
-  const std::string cmd = std::string(SEALFE_BINARY) + " " + command + " " + prm.string() + " > " +
-                          (dir / "stdout").string() + " 2> " + (dir / "stderr").string();
-  const int raw = std::system(cmd.c_str());
-  return {WEXITSTATUS(raw), read(dir / "stdout"), read(dir / "stderr")};
-}
 } // namespace
 
 TEST(TableCli, BadInputIsRefusedWithOneLine)
@@ -55,7 +31,7 @@ TEST(TableCli, BadInputIsRefusedWithOneLine)
   auto refused = [](const std::string &command, const std::string &body, const std::string &what)
   {
     const fs::path d = work_dir("bad");
-    const Result r = run(d, command, body);
+    const Result r = run_sealfe(d, command, body);
     EXPECT_NE(r.status, 0);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(what), std::string::npos) << r.err;

@@ -6,6 +6,8 @@
 #include <sealfe/coefficients/table_sweep.h>
 #include <sealfe/numerics/number_lists.h>
 
+#include "../sealfe_cli.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -23,42 +25,13 @@ using namespace sealfe;
 
 namespace
 {
-struct Result
-{
-  int status;
-  std::string out, err;
-};
+using Result = sealfe::testing::CliResult;
+using sealfe::testing::read_file;
+using sealfe::testing::run_sealfe;
 
 fs::path work_dir(const std::string &name)
 {
-  const fs::path d = fs::temp_directory_path() / ("sealfe_table_cli_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string read(const fs::path &f)
-{
-  std::ifstream in(f);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `[launcher] sealfe <command> case.prm` in `dir` with the prm body (Output directory set).
-Result run(const fs::path &dir, const std::string &command, const std::string &body,
-           const std::string &launcher = "")
-{
-  const fs::path prm = dir / "case.prm";
-  {
-    std::ofstream out(prm);
-    out << "set Output directory = " << (dir / "out").string() << "\n" << body;
-  }
-  const std::string cmd = launcher + std::string(SEALFE_BINARY) + " " + command + " " +
-                          prm.string() + " > " + (dir / "stdout").string() + " 2> " +
-                          (dir / "stderr").string();
-  const int raw = std::system(cmd.c_str());
-  return {WEXITSTATUS(raw), read(dir / "stdout"), read(dir / "stderr")};
+  return sealfe::testing::fresh_directory("sealfe_table_cli_" + name);
 }
 
 /// A mesh small enough for many points per second.
@@ -94,9 +67,9 @@ TEST(CoefficientsCli, SummaryHasStiffnessDampingAndTheirErrors)
   const std::string mesh = "subsection Discretization\n  set Radial cells = 8\n"
                            "  set Circumferential cells = 64\nend\n";
   const fs::path d = work_dir("coefficients");
-  const Result r = run(d, "coefficients", mesh);
+  const Result r = run_sealfe(d, "coefficients", mesh);
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto s = nlohmann::json::parse(read(d / "out" / "summary.json"));
+  const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
   for (const char *key : {"stiffness", "damping"})
   {
     ASSERT_EQ(s[key].size(), 3u);
@@ -116,11 +89,11 @@ TEST(CoefficientsCli, SummaryHasStiffnessDampingAndTheirErrors)
 
   // The finite-difference check from the command line gives the same matrices.
   const fs::path d2 = work_dir("coefficients_fd");
-  const Result r2 = run(d2, "coefficients",
-                        mesh + "subsection Coefficients\n  set Method = finite difference\n"
-                               "end\n");
+  const Result r2 = run_sealfe(d2, "coefficients",
+                               mesh + "subsection Coefficients\n  set Method = finite difference\n"
+                                      "end\n");
   ASSERT_EQ(r2.status, 0) << r2.err;
-  const auto s2 = nlohmann::json::parse(read(d2 / "out" / "summary.json"));
+  const auto s2 = nlohmann::json::parse(read_file(d2 / "out" / "summary.json"));
   for (const char *key : {"stiffness", "damping"})
     for (unsigned int i = 0; i < 3; ++i)
       EXPECT_NEAR(s2[key][i][i].get<double>(), s[key][i][i].get<double>(),
@@ -132,12 +105,12 @@ TEST(TableCli, OneRowPerPointAndAFailingPointKeepsTheRest)
   // Tilts of 0, 1e-5 and 5e-5 rad at two speeds: 5e-5 rad touches down (5e-5 * 0.0408 m > C0)
   // and so does the held-out point between 1e-5 and 5e-5.
   const fs::path d = work_dir("failing");
-  const Result r = run(d, "table",
-                       small_mesh + "subsection Table\n  set Rotor speed = 500, 1500\n"
-                                    "  set Clearance =\n  set Tilt = 0, 1e-5, 5e-5\n"
-                                    "  set Held-out points = 1\nend\n");
+  const Result r = run_sealfe(d, "table",
+                              small_mesh + "subsection Table\n  set Rotor speed = 500, 1500\n"
+                                           "  set Clearance =\n  set Tilt = 0, 1e-5, 5e-5\n"
+                                           "  set Held-out points = 1\nend\n");
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto rows = lines(read(d / "out" / "coefficients.csv"));
+  const auto rows = lines(read_file(d / "out" / "coefficients.csv"));
   ASSERT_EQ(rows.size(), 1u + 6u + 1u); // header, 6 grid points, 1 held-out
   EXPECT_EQ(rows[0], coefficient_table_format::header(true));
   EXPECT_NE(rows[0].find("rotor_speed [rad/s]"), std::string::npos);
@@ -160,7 +133,7 @@ TEST(TableCli, OneRowPerPointAndAFailingPointKeepsTheRest)
   EXPECT_EQ(failed, 3u);
   EXPECT_NE(r.err.find("FAILED"), std::string::npos);
   EXPECT_NE(r.err.find("point 3/7"), std::string::npos) << r.err;
-  const auto s = nlohmann::json::parse(read(d / "out" / "summary.json"));
+  const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
   EXPECT_EQ(s["failed_points"], 3);
   EXPECT_EQ(s["grid_points"], 6);
   // The table reads back; interpolation between the good tilts works.
@@ -181,13 +154,13 @@ TEST(TableCli, TwoRanksWriteTheSameFile)
   const std::string body = small_mesh + "subsection Table\n  set Rotor speed = 0 : 3000 : 4\n"
                                         "  set Clearance = 1e-6, 1.5e-6\nend\n";
   const fs::path d1 = work_dir("np1"), d2 = work_dir("np2");
-  const Result r1 = run(d1, "table", body, mpirun_env + "mpirun -np 1 ");
-  const Result r2 = run(d2, "table", body, mpirun_env + "mpirun -np 2 ");
+  const Result r1 = run_sealfe(d1, "table", body, mpirun_env + "mpirun -np 1 ");
+  const Result r2 = run_sealfe(d2, "table", body, mpirun_env + "mpirun -np 2 ");
   ASSERT_EQ(r1.status, 0) << r1.err;
   ASSERT_EQ(r2.status, 0) << r2.err;
-  EXPECT_EQ(read(d1 / "out" / "coefficients.csv"), read(d2 / "out" / "coefficients.csv"));
+  EXPECT_EQ(read_file(d1 / "out" / "coefficients.csv"), read_file(d2 / "out" / "coefficients.csv"));
   EXPECT_NE(r2.err.find("[rank 1]"), std::string::npos) << r2.err;
-  const auto s = nlohmann::json::parse(read(d2 / "out" / "summary.json"));
+  const auto s = nlohmann::json::parse(read_file(d2 / "out" / "summary.json"));
   EXPECT_EQ(s["mpi_ranks"], 2);
 }
 
@@ -200,15 +173,15 @@ TEST(TableCli, HeldOutErrorOfAnFETableFallsAtTheInterpolantsOrder)
   for (const unsigned int n : {3u, 5u, 9u})
   {
     const fs::path d = work_dir("refine" + std::to_string(n));
-    const Result r = run(d, "table",
-                         small_mesh +
-                             "subsection Discretization\n  set Error estimate = false\n"
-                             "end\nsubsection Table\n  set Rotor speed =\n"
-                             "  set Clearance = 0.8e-6 : 1.6e-6 : " +
-                             std::to_string(n) +
-                             "\n  set Held-out points = 8\n  set Interpolation = linear\nend\n");
+    const Result r = run_sealfe(
+        d, "table",
+        small_mesh +
+            "subsection Discretization\n  set Error estimate = false\n"
+            "end\nsubsection Table\n  set Rotor speed =\n"
+            "  set Clearance = 0.8e-6 : 1.6e-6 : " +
+            std::to_string(n) + "\n  set Held-out points = 8\n  set Interpolation = linear\nend\n");
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto s = nlohmann::json::parse(read(d / "out" / "summary.json"));
+    const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
     errors.push_back(s["max_held_out_error"]["stiffness"].get<double>());
   }
   for (unsigned int i = 1; i < errors.size(); ++i)
