@@ -1,5 +1,5 @@
 #include <sealfe/closed_form/narrow_seal.h>
-#include <sealfe/dynamics/closed_form_transient_film.h>
+#include <sealfe/closed_form/narrow_seal_film.h>
 #include <sealfe/dynamics/equilibrium.h>
 #include <sealfe/dynamics/transient_study.h>
 #include <sealfe/film/cavitation.h>
@@ -19,8 +19,8 @@ namespace sealfe
 namespace
 {
 /// The film of the chosen level; only the closed form (level 0) is available here so far.
-std::unique_ptr<ClosedFormTransientFilm> make_film(dealii::ParameterHandler &prm,
-                                                   const FlexibleStatorSeal &seal)
+std::unique_ptr<NarrowSealFilm> make_film(dealii::ParameterHandler &prm,
+                                          const FlexibleStatorSeal &seal)
 {
   prm.enter_subsection("Transient");
   const FilmLevel level = film_level_from_string(prm.get("Film level"));
@@ -35,8 +35,8 @@ std::unique_ptr<ClosedFormTransientFilm> make_film(dealii::ParameterHandler &prm
                              "half-sommerfeld only, not reynolds or jfo");
   NarrowSealQuadrature quadrature;
   quadrature.parse_parameters(prm);
-  return std::make_unique<ClosedFormTransientFilm>(seal.geometry, seal.conditions, cavitation.model,
-                                                   quadrature, cavitation.pressure);
+  return std::make_unique<NarrowSealFilm>(seal.geometry, seal.conditions, quadrature,
+                                          cavitation.model, cavitation.pressure);
 }
 
 void declare_case(dealii::ParameterHandler &prm)

@@ -1,5 +1,6 @@
 #include <sealfe/film/film_force_model.h>
 
+#include <array>
 #include <stdexcept>
 
 namespace sealfe
@@ -70,4 +71,37 @@ OperatingConditions FilmState::apply(OperatingConditions base) const
   return base;
 }
 
+FilmCoefficients central_difference_coefficients(const FilmForceModel &film, const FilmState &state,
+                                                 const double min_film, const double outer_radius)
+{
+  FilmCoefficients k;
+  k.level = static_cast<int>(film.level());
+  k.model = film.description() + ", central differences";
+  k.rotor_speed = state.rotor_speed;
+  k.stator_speed = state.stator_speed;
+  const double dz = 1e-3 * min_film, da = dz / outer_radius;
+  // rates: a squeeze velocity that moves the face by dz in 1 ms
+  const double dv = dz / 1e-3, dw = da / 1e-3;
+  auto forces = [&](const FilmState &s)
+  {
+    const FilmLoads l = film.loads(s);
+    return std::array<double, 3>{{l.force_z, l.moment_x, l.moment_y}};
+  };
+  double FilmState::*pos[] = {&FilmState::axial_offset, &FilmState::tilt_x, &FilmState::tilt_y};
+  double FilmState::*vel[] = {&FilmState::axial_velocity, &FilmState::tilt_rate_x,
+                              &FilmState::tilt_rate_y};
+  for (int j = 0; j < 3; ++j)
+    for (int which = 0; which < 2; ++which)
+    {
+      double FilmState::*m = which == 0 ? pos[j] : vel[j];
+      const double step = which == 0 ? (j == 0 ? dz : da) : (j == 0 ? dv : dw);
+      FilmState plus = state, minus = state;
+      plus.*m += step;
+      minus.*m -= step;
+      const auto fp = forces(plus), fm = forces(minus);
+      for (int i = 0; i < 3; ++i)
+        (which == 0 ? k.stiffness : k.damping)[i][j] = -(fp[i] - fm[i]) / (2 * step);
+    }
+  return k;
+}
 } // namespace sealfe

@@ -1,7 +1,7 @@
 // Green 2002: the operating point of a flexibly mounted stator (closing force Eq. 22 against film
 // + GW/CEB contact), the ramps of Eq. 17, the thermal coning of Eq. 11 and bad input. Numbers
 // from the paper's Table 1 or from closed forms solved independently here.
-#include <sealfe/dynamics/closed_form_transient_film.h>
+#include <sealfe/closed_form/narrow_seal_film.h>
 #include <sealfe/dynamics/equilibrium.h>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -31,12 +31,12 @@ struct Case
                         AsperityContactParameters()),
         0.0355, 0.0408, 8, 96);
   }
-  ClosedFormTransientFilm film() const
+  NarrowSealFilm film() const
   {
     NarrowSealQuadrature q;
     q.radial_points = 8;
     q.angular_points = 64;
-    return ClosedFormTransientFilm(seal.geometry, seal.conditions, Cavitation::half_sommerfeld, q);
+    return NarrowSealFilm(seal.geometry, seal.conditions, q, Cavitation::half_sommerfeld);
   }
   static FilmState at(double omega, double pi_, double po)
   {

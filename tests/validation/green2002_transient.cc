@@ -2,7 +2,7 @@
 // decay of a small axial offset at the root of m s^2 + D s + K = 0, and the thermal coning's
 // first-order lag (Eq. 11-13). Numbers from the equilibrium solver, the film's linearisation and
 // closed forms, never from the transient itself.
-#include <sealfe/dynamics/closed_form_transient_film.h>
+#include <sealfe/closed_form/narrow_seal_film.h>
 #include <sealfe/dynamics/equilibrium.h>
 #include <sealfe/dynamics/stator_transient.h>
 
@@ -35,12 +35,12 @@ FlexibleStatorSeal constant_seal(double omega, double pi_, double po, bool conta
   return seal;
 }
 
-ClosedFormTransientFilm narrow_film(const FlexibleStatorSeal &seal)
+NarrowSealFilm narrow_film(const FlexibleStatorSeal &seal)
 {
   NarrowSealQuadrature q;
   q.radial_points = 8;
   q.angular_points = 64;
-  return ClosedFormTransientFilm(seal.geometry, seal.conditions, Cavitation::half_sommerfeld, q);
+  return NarrowSealFilm(seal.geometry, seal.conditions, q, Cavitation::half_sommerfeld);
 }
 
 FilmState steady_state(const FlexibleStatorSeal &seal)
@@ -114,7 +114,9 @@ TEST(Green2002Transient, AxialOffsetDecaysAtTheLinearisedRoot)
   const SealEquilibrium eq = solve_equilibrium(seal, film, s);
   s.axial_offset = eq.axial_offset;
   s.coning = seal.geometry.coning;
-  const FilmCoefficients k = film.coefficients(s);
+  // the linearisation at the equilibrium state itself (not the closed forms' at C0)
+  const FilmCoefficients k = central_difference_coefficients(
+      film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
   const double m = seal.stator.mass;
   const double D = k.damping[0][0] + seal.stator.axial_damping;
   const double K = k.stiffness[0][0] + seal.stator.axial_stiffness;

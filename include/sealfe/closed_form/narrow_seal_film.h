@@ -17,21 +17,30 @@ public:
   /// Throws std::runtime_error (one line) if the untilted seal makes no narrow-seal film (the
   /// checks of GreenEtsionCoefficients).
   NarrowSealFilm(const FilmThickness &geometry, const OperatingConditions &operating,
-                 const NarrowSealQuadrature &quadrature = {});
+                 const NarrowSealQuadrature &quadrature = {},
+                 Cavitation cavitation = Cavitation::half_sommerfeld,
+                 double cavitation_pressure = 0);
 
   FilmLevel level() const override { return FilmLevel::closed_form; }
   std::string description() const override;
-  /// NarrowSealModel loads (half-Sommerfeld at p_cav = 0) of the film at `state`.
+  /// NarrowSealModel loads (half-Sommerfeld at p_cav by default, or full film) of the film at
+  /// `state`.
   FilmLoads loads(const FilmState &state) const override;
   /// GreenEtsionCoefficients about the untilted face at the state's coning, pressures and
   /// speeds (the state's position, tilt and velocities do not enter: the closed forms are the
   /// linearisation about the axisymmetric equilibrium at clearance C0).
   FilmCoefficients coefficients(const FilmState &state) const override;
 
+  /// Number of loads() calls so far (the cost measure of a transient).
+  unsigned long evaluations() const { return n_evaluations; }
+
 private:
   FilmThickness geometry;
   OperatingConditions operating;
   NarrowSealQuadrature quadrature;
+  Cavitation cavitation;
+  double cavitation_pressure;
+  mutable unsigned long n_evaluations = 0;
 };
 
 } // namespace sealfe

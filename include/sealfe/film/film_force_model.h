@@ -76,4 +76,11 @@ public:
   virtual FilmCoefficients coefficients(const FilmState &state) const = 0;
 };
 
+/// Stiffness and damping of any FilmForceModel by central differences of its loads about `state`:
+/// position steps dz = 1e-3 min_film (tilts dz / outer_radius), rate steps that move the face by
+/// the same amount in 1 ms. The linearisation at the actual state, where a model's own
+/// coefficients() may be taken about a reference state (the closed forms: at clearance C0).
+FilmCoefficients central_difference_coefficients(const FilmForceModel &film, const FilmState &state,
+                                                 double min_film, double outer_radius);
+
 } // namespace sealfe
