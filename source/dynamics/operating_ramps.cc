@@ -18,6 +18,28 @@ double Ramp::value(const double t) const
   return rest + (steady - rest) * (t3 - t) / (t3 - t2);
 }
 
+double Ramp::rate(const double t) const
+{
+  if (t < 0 || t >= t3 || steady == rest)
+    return 0;
+  if (t < t1)
+    return (steady - rest) / t1;
+  if (t < t2)
+    return 0;
+  return -(steady - rest) / (t3 - t2);
+}
+
+std::vector<double> Ramp::corners() const
+{
+  std::vector<double> c;
+  if (steady == rest)
+    return c;
+  for (const double t : {t1, t2, t3})
+    if (t > 0 && std::isfinite(t) && t < 1e299)
+      c.push_back(t);
+  return c;
+}
+
 double Ramp::integral(const double t) const
 {
   // Int_0^t of value(): rest * t plus the trapezoid's part (closed form per piece)
@@ -115,5 +137,15 @@ double OperatingRamps::last_change() const
   for (const Ramp *r : {&speed, &outer_pressure, &inner_pressure})
     t = std::max(t, r->t3 < 1e100 ? r->t3 : r->t2);
   return t;
+}
+std::vector<double> OperatingRamps::corners() const
+{
+  std::vector<double> c;
+  for (const Ramp *r : {&speed, &outer_pressure, &inner_pressure})
+    for (const double t : r->corners())
+      c.push_back(t);
+  std::sort(c.begin(), c.end());
+  c.erase(std::unique(c.begin(), c.end()), c.end());
+  return c;
 }
 } // namespace sealfe

@@ -95,11 +95,11 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
   using namespace dealii::Patterns;
   prm.enter_subsection("Transient");
   prm.declare_entry("End time", "9", Double(), "t_end (s), > 0.");
-  prm.declare_entry("Relative tolerance", "1e-6", Double(), "ARKode relative tolerance.");
-  prm.declare_entry("Absolute tolerance", "1e-6", Double(),
-                    "ARKode absolute tolerance on the scaled state (Z/C0, tilts ro/C0, coning "
+  prm.declare_entry("Relative tolerance", "1e-5", Double(), "IDA (BDF) relative tolerance.");
+  prm.declare_entry("Absolute tolerance", "1e-5", Double(),
+                    "IDA absolute tolerance on the scaled state (Z/C0, tilts ro/C0, coning "
                     "ro/C0, rates times 1 ms, leaked volume / 1 mm^3).");
-  prm.declare_entry("Output interval", "2e-3", Double(), "Time between rows of transient.csv (s).");
+  prm.declare_entry("Output interval", "0.01", Double(), "Time between rows of transient.csv (s).");
   prm.declare_entry("Initial state", "given", Selection("given|rest equilibrium"),
                     "given: Z(0) = Initial axial offset * C0, stator aligned with the rotor "
                     "(Green 2002: Z(0) = -0.65 C0, gamma_s(0) = gamma_r); rest equilibrium: Z(0) "
@@ -113,7 +113,17 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Contact threshold", "0.01", Double(0),
                     "In contact while the contact force exceeds this fraction of the closing "
                     "force (lift-off / touch-down times in summary.json).");
-  prm.declare_entry("Order", "3", Integer(2, 5), "Order of ARKode's implicit (DIRK) method.");
+  prm.declare_entry("Order", "2", Integer(1, 5),
+                    "Largest order of IDA's variable-order BDF. 2: BDF1-2 are A-stable; at orders "
+                    "3-5 the film's lightly damped half-frequency whirl (eigenvalues near the "
+                    "imaginary axis) made the step size erratic (up to 60 times more steps, "
+                    "doc/transient.md).");
+  prm.declare_entry("Frame", "auto", Selection("auto|inertial|rotating"),
+                    "Frame of the stator-tilt state. rotating: turns with the shaft, so a "
+                    "steady whirl under rotor runout is a constant state and the integrator "
+                    "takes long steps; inertial: fixed in space (steady under a stator "
+                    "misalignment without runout). auto: rotating unless there is no runout "
+                    "and a stator misalignment (doc/transient.md).");
   prm.declare_entry("Film level", "closed form", Selection(film_level_pattern()),
                     "closed form: narrow seal (level 0). table and finite element are not "
                     "available in this version of the transient.");
@@ -133,6 +143,7 @@ void TransientSettings::parse_parameters(dealii::ParameterHandler &prm)
   maximum_steps = prm.get_integer("Maximum steps per output");
   contact_threshold = prm.get_double("Contact threshold");
   order = prm.get_integer("Order");
+  frame = prm.get("Frame");
   prm.leave_subsection();
 }
 
@@ -211,12 +222,22 @@ double TransientSample::stator_precession() const
 
 struct StatorTransient::Evaluation
 {
-  FilmState state;
+  FilmState state; ///< the film's state, tilts in the integration frame
   FilmLoads film;
   FaceContact::Loads contact;
   double closing_force, heating_film;
-  std::array<double, 2> rotor_tilt;
+  double shaft_angle;
 };
+
+namespace
+{
+/// v turned by the angle a (counter-clockwise, the sense of the shaft's rotation).
+std::array<double, 2> turned(const std::array<double, 2> &v, const double a)
+{
+  const double c = std::cos(a), s = std::sin(a);
+  return {{c * v[0] - s * v[1], s * v[0] + c * v[1]}};
+}
+} // namespace
 
 StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForceModel &film,
                                  const TransientSettings &settings)
@@ -225,23 +246,27 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
   const double C0 = seal.geometry.clearance, ro = seal.geometry.outer_radius;
   const double rate = 1e3; // 1/s: velocities are scaled as displacements per ms
   scale = {{C0, C0 * rate, C0 / ro, C0 / ro, C0 / ro * rate, C0 / ro * rate, C0 / ro, 1e-9}};
+  // the frame in which the forcing is steady: the rotor's runout is fixed in the rotating
+  // frame, the stator's initial misalignment in the inertial one
+  rotating = settings.frame == "rotating" ||
+             (settings.frame == "auto" &&
+              !(seal.runout.tilt == 0 && seal.stator.initial_misalignment > 0));
 }
 
 StatorTransient::Evaluation StatorTransient::evaluate(const double t, const State &y) const
 {
   Evaluation e;
   const double omega = seal.ramps.speed.value(t);
-  const double shaft = seal.ramps.speed.integral(t);
-  e.rotor_tilt = seal.runout.vector(shaft);
-  // d/dt of the rotor tilt vector: omega x (gamma cos, gamma sin)
-  const std::array<double, 2> rotor_rate = {{-omega * e.rotor_tilt[1], omega * e.rotor_tilt[0]}};
+  e.shaft_angle = seal.ramps.speed.integral(t);
   FilmState &s = e.state;
+  // y[2..3] is the relative tilt a = a_s - a_r in the integration frame, y[4..5] its rate
+  // there. The film needs the inertial rate: in the rotating frame that is a' + omega J a.
+  s.tilt_x = y[2];
+  s.tilt_y = y[3];
+  s.tilt_rate_x = rotating ? y[4] - omega * y[3] : y[4];
+  s.tilt_rate_y = rotating ? y[5] + omega * y[2] : y[5];
   s.axial_offset = y[0];
   s.axial_velocity = y[1];
-  s.tilt_x = y[2] - e.rotor_tilt[0];
-  s.tilt_y = y[3] - e.rotor_tilt[1];
-  s.tilt_rate_x = y[4] - rotor_rate[0];
-  s.tilt_rate_y = y[5] - rotor_rate[1];
   s.rotor_speed = omega;
   s.stator_speed = 0;
   s.inner_pressure = seal.ramps.inner_pressure.value(t);
@@ -266,12 +291,26 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   return e;
 }
 
+std::array<double, 2> StatorTransient::rotor_tilt(const double shaft_angle) const
+{
+  return seal.runout.vector(rotating ? 0.0 : shaft_angle);
+}
+
 State StatorTransient::rate(const double t, const State &y) const
 {
   const Evaluation e = evaluate(t, y);
   const StatorRing &ring = seal.stator;
-  const double gx = ring.initial_misalignment * std::sin(ring.misalignment_angle);
-  const double gy = -ring.initial_misalignment * std::cos(ring.misalignment_angle);
+  const double omega = e.state.rotor_speed, omega_rate = seal.ramps.speed.rate(t);
+  // the stator's initial misalignment g is fixed in space
+  std::array<double, 2> g = {{ring.initial_misalignment * std::sin(ring.misalignment_angle),
+                              -ring.initial_misalignment * std::cos(ring.misalignment_angle)}};
+  if (rotating)
+    g = turned(g, -e.shaft_angle);
+  // stator tilt a_s = a + a_r and its inertial rate (the support damps that)
+  const std::array<double, 2> r = rotor_tilt(e.shaft_angle);
+  const double ax = y[2] + r[0], ay = y[3] + r[1];
+  const double vx = rotating ? e.state.tilt_rate_x - omega * r[1] : y[4] - omega * r[1];
+  const double vy = rotating ? e.state.tilt_rate_y + omega * r[0] : y[5] + omega * r[0];
   State d{};
   d[0] = y[1];
   d[1] = (e.film.force_z + e.contact.force - e.closing_force - ring.axial_stiffness * y[0] -
@@ -279,12 +318,26 @@ State StatorTransient::rate(const double t, const State &y) const
          ring.mass;
   d[2] = y[4];
   d[3] = y[5];
-  d[4] = (e.film.moment_x + e.contact.moment_x - ring.angular_stiffness * (y[2] - gx) -
-          ring.angular_damping * y[4]) /
+  // a_s'' (inertial) = moments / I
+  d[4] = (e.film.moment_x + e.contact.moment_x - ring.angular_stiffness * (ax - g[0]) -
+          ring.angular_damping * vx) /
          ring.transverse_inertia;
-  d[5] = (e.film.moment_y + e.contact.moment_y - ring.angular_stiffness * (y[3] - gy) -
-          ring.angular_damping * y[5]) /
+  d[5] = (e.film.moment_y + e.contact.moment_y - ring.angular_stiffness * (ay - g[1]) -
+          ring.angular_damping * vy) /
          ring.transverse_inertia;
+  if (rotating)
+  {
+    // a_s = R(psi) b with b = a + b_r (b_r fixed): a'' = b'' = R^T a_s'' - 2 omega J b'
+    // - omega' J b + omega^2 b, J the quarter turn (J v = (-v_y, v_x))
+    d[4] += 2 * omega * y[5] + omega_rate * ay + omega * omega * ax;
+    d[5] += -2 * omega * y[4] - omega_rate * ax + omega * omega * ay;
+  }
+  else
+  {
+    // a = a_s - a_r with a_r turning at omega: a'' = a_s'' - omega' J a_r + omega^2 a_r
+    d[4] += omega_rate * r[1] + omega * omega * r[0];
+    d[5] += -omega_rate * r[0] + omega * omega * r[1];
+  }
   d[6] = (seal.thermal.enabled() && seal.thermal.time_constant > 0)
              ? seal.thermal.rate(y[6], e.heating_film, e.state.rotor_speed)
              : 0.0;
@@ -294,11 +347,14 @@ State StatorTransient::rate(const double t, const State &y) const
 
 State StatorTransient::initial_state() const
 {
+  // the stator rests on the rotor: aligned with it (a = 0) and not moving in space
+  // (a' = -omega J a_r, the same in both frames at psi = 0)
   State y{};
-  const auto rotor = seal.runout.vector(0);
+  const auto r = seal.runout.vector(0);
+  const double omega = seal.ramps.speed.value(0);
   y[0] = settings.initial_axial_offset * seal.geometry.clearance;
-  y[2] = rotor[0];
-  y[3] = rotor[1];
+  y[4] = omega * r[1];
+  y[5] = -omega * r[0];
   y[6] = seal.thermal.initial_coning;
   if (settings.start_at_rest_equilibrium)
   {
@@ -311,6 +367,13 @@ State StatorTransient::initial_state() const
 TransientSample StatorTransient::sample(const double t, const State &y) const
 {
   const Evaluation e = evaluate(t, y);
+  const double psi = rotating ? e.shaft_angle : 0.0;
+  // outputs in the inertial frame
+  const auto r = rotor_tilt(e.shaft_angle);
+  const auto stator = turned({{y[2] + r[0], y[3] + r[1]}}, psi);
+  const auto film_moment = turned({{e.film.moment_x, e.film.moment_y}}, psi);
+  const auto contact_moment = turned({{e.contact.moment_x, e.contact.moment_y}}, psi);
+  const auto rotor = seal.runout.vector(e.shaft_angle);
   TransientSample s;
   s.time = t;
   s.rotor_speed = e.state.rotor_speed;
@@ -318,10 +381,10 @@ TransientSample StatorTransient::sample(const double t, const State &y) const
   s.outer_pressure = e.state.outer_pressure;
   s.axial_offset = y[0];
   s.axial_velocity = y[1];
-  s.stator_tilt_x = y[2];
-  s.stator_tilt_y = y[3];
-  s.rotor_tilt_x = e.rotor_tilt[0];
-  s.rotor_tilt_y = e.rotor_tilt[1];
+  s.stator_tilt_x = stator[0];
+  s.stator_tilt_y = stator[1];
+  s.rotor_tilt_x = rotor[0];
+  s.rotor_tilt_y = rotor[1];
   s.relative_tilt = std::hypot(e.state.tilt_x, e.state.tilt_y);
   s.coning = e.state.coning;
   s.min_film = std::min(e.contact.min_film, e.film.min_film > 0 ? e.film.min_film : INFINITY);
@@ -330,10 +393,10 @@ TransientSample StatorTransient::sample(const double t, const State &y) const
   s.film_force = e.film.force_z;
   s.contact_force = e.contact.force;
   s.closing_force = e.closing_force;
-  s.film_moment_x = e.film.moment_x;
-  s.film_moment_y = e.film.moment_y;
-  s.contact_moment_x = e.contact.moment_x;
-  s.contact_moment_y = e.contact.moment_y;
+  s.film_moment_x = film_moment[0];
+  s.film_moment_y = film_moment[1];
+  s.contact_moment_x = contact_moment[0];
+  s.contact_moment_y = contact_moment[1];
   s.leakage_inner = e.film.leakage_inner;
   s.friction_torque = e.film.friction_torque;
   s.leaked_volume = y[7];

@@ -76,13 +76,26 @@ void FilmThickness::set_tilt_vector(const double tx, const double ty)
 namespace
 {
 /// Extremum of h over the dam: h is linear in r at fixed theta, so the extremes lie on r = ri or
-/// r = ro; on each circle the extremum in theta is sampled finely and polished.
+/// r = ro; on each circle the extremum in theta is sampled finely and polished, or, without
+/// waviness, taken in closed form (the tilt term gamma r cos(theta - phi) is extreme at phi and
+/// phi + pi): the transient asks for it at every film evaluation.
 FilmThickness::Extremum extremum(const FilmThickness &h, const bool maximum)
 {
   FilmThickness::Extremum best{0, 0, 0};
   bool first = true;
   for (const double r : {h.inner_radius, h.outer_radius})
   {
+    if (h.wave_amplitude == 0)
+    {
+      const bool at_tilt_angle = (h.tilt >= 0) == maximum;
+      const double theta =
+          std::fmod(h.tilt_angle + (at_tilt_angle ? 0 : M_PI) + 4 * M_PI, 2 * M_PI);
+      const double value = h.value(r, theta);
+      if (first || (maximum ? value > best.value : value < best.value))
+        best = {value, r, theta};
+      first = false;
+      continue;
+    }
     const auto on_circle = [&](const double theta) { return h.value(r, theta); };
     const numerics::Minimum m =
         maximum

@@ -76,10 +76,7 @@ private:
 // At the reference steady point (1500 rad/s, 100/500 kPa, B = 0.75, GW/CEB contact, a short
 // thermal time constant) the transient started off the balance and with flat faces settles on the
 // clearance and coning of solve_equilibrium.
-// DISABLED: with contact at the reference point the integrator stalls (error-test failures near
-// t = 1 s, 44 s wall, measured with the Jacobian-reuse variant); enable when the integration is
-// fast.
-TEST(Green2002Transient, DISABLED_SettlesOnTheEquilibrium)
+TEST(Green2002Transient, SettlesOnTheEquilibrium)
 {
   FlexibleStatorSeal seal = constant_seal(1500, 1e5, 5e5, true);
   seal.thermal.time_constant = 0.05;
@@ -87,18 +84,25 @@ TEST(Green2002Transient, DISABLED_SettlesOnTheEquilibrium)
   const SealEquilibrium eq = solve_equilibrium(seal, film, steady_state(seal));
 
   TransientSettings settings;
-  settings.end_time = 4;
-  settings.output_interval = 4;
+  settings.end_time = 8; // the axial creep has a time constant of ~0.4 s here
+  settings.output_interval = 8;
   settings.relative_tolerance = 1e-9;
   settings.absolute_tolerance = 1e-9;
+  settings.order = 5; // no tilt is excited (no runout): a smooth, non-oscillating problem
   settings.initial_axial_offset = eq.axial_offset / C0 + 0.05;
   const StatorTransient transient(seal, film, settings);
   const auto result = transient.run();
   ASSERT_TRUE(result.complete) << result.stop_reason;
   const TransientSample &end = result.samples.back();
   EXPECT_NEAR(end.axial_offset / C0, eq.axial_offset / C0, 1e-6);
-  EXPECT_NEAR(end.coning / eq.coning, 1, 1e-6);
   EXPECT_NEAR(end.axial_velocity, 0, 1e-9);
+  // the coning is settled on Eq. 11 at the transient's own film (beta ~ 1/h: a 1e-6 C0 offset
+  // in Z alone moves it by ~4e-6 relative, so it is checked against Eq. 11, not eq.coning)
+  const double beta_eq11 = seal.thermal.reference_coning *
+                           (seal.thermal.reference_film / end.heating_film) *
+                           std::pow(1500 / seal.thermal.reference_speed, 2);
+  EXPECT_NEAR(end.coning / beta_eq11, 1, 1e-6);
+  EXPECT_NEAR(end.coning / eq.coning, 1, 1e-6 * C0 / end.min_film + 1e-6);
 }
 
 // A small axial offset from the balance (no contact, fixed coning) decays at the slow root of
@@ -154,6 +158,7 @@ TEST(Green2002Transient, ConingFollowsTheFirstOrderLag)
   settings.relative_tolerance = 1e-9;
   settings.absolute_tolerance = 1e-9;
   settings.initial_axial_offset = 0;
+  settings.order = 5; // a smooth exponential: BDF up to order 5
   const StatorTransient transient(seal, film, settings);
   const auto result = transient.run();
   ASSERT_TRUE(result.complete) << result.stop_reason;

@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace sealfe
 {
@@ -22,6 +23,10 @@ struct Ramp
   double t1 = 0, t2 = 0, t3 = 0;
 
   double value(double t) const;
+  /// d value / dt (the slope of the piece t lies in; the right-hand slope at a corner).
+  double rate(double t) const;
+  /// The corners t1, t2, t3 where the slope jumps (finite ones with a jump only).
+  std::vector<double> corners() const;
   /// Integral of value() from 0 to t (closed form): the shaft angle psi_r = Int omega dt.
   double integral(double t) const;
   /// Throws std::runtime_error naming `what` unless 0 <= t1 <= t2 <= t3 and values finite.
@@ -42,5 +47,8 @@ struct OperatingRamps
   void validate() const;
   /// The last time at which anything changes (max t3 that is finite, else max t2).
   double last_change() const;
+  /// Every corner of the three ramps, sorted, without repeats: the integrator stops there so
+  /// that no step straddles a jump of the slope.
+  std::vector<double> corners() const;
 };
 } // namespace sealfe

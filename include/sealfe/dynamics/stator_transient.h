@@ -1,6 +1,6 @@
 // StatorTransient: the flexibly mounted stator of Green 2002 Eq. 26 in time — axial Z, stator
 // tilt (Cartesian components), coning beta — under ramps, rotor runout, closing force, supports,
-// film (any FilmForceModel) and asperity contact, integrated by SUNDIALS ARKode (implicit,
+// film (any FilmForceModel) and asperity contact, integrated by SUNDIALS IDA (BDF,
 // adaptive).
 #pragma once
 
@@ -53,15 +53,16 @@ struct RotorRunout
 struct TransientSettings
 {
   double end_time = 9;
-  double relative_tolerance = 1e-6;
-  double absolute_tolerance = 1e-6; ///< on the scaled state (Z/C0, tilt ro/C0, ...)
-  double output_interval = 2e-3;
+  double relative_tolerance = 1e-5;
+  double absolute_tolerance = 1e-5; ///< on the scaled state (Z/C0, tilt ro/C0, ...)
+  double output_interval = 0.01;
   double initial_axial_offset = -0.65; ///< Z(0)/C0
   bool start_at_rest_equilibrium = false;
   double minimum_step = 1e-12;
   unsigned long maximum_steps = 2000000;
   double contact_threshold = 0.01; ///< in contact: contact force > this fraction of F_cls
-  unsigned int order = 3;          ///< ARKode DIRK order
+  unsigned int order = 2;          ///< largest order of IDA's BDF
+  std::string frame = "auto";      ///< auto | inertial | rotating (stator-tilt state)
 
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
@@ -99,12 +100,15 @@ struct FlexibleStatorSeal
   double face_area() const;
 };
 
-/// The state of Eq. 26 in Cartesian form (doc/transient.md):
+/// The state of Eq. 26 in Cartesian form (doc/transient.md): Z, Z', the relative tilt
+/// a = a_s - a_r and its rate in the integration frame (turning with the shaft or fixed in
+/// space, TransientSettings::frame), beta, the leaked volume V:
 ///   m Z''      = F_f + F_c - F_cls(t) - K_sz Z - D_sz Z'
 ///   I a_s''    = M_f + M_c - K_s (a_s - a_si) - D_s a_s'      (a_s = stator tilt vector)
 ///   tau beta'  = beta_ref (h_ref/h)(omega/omega_ref)^2 - beta
 ///   V'         = Q_inner
-/// with the film and contact evaluated at the relative tilt a = a_s - a_r(psi_r(t)).
+/// with the film and contact evaluated at the relative tilt a = a_s - a_r(psi_r(t)), integrated
+/// by SUNDIALS IDA (variable-order BDF, dense Newton with a difference Jacobian).
 class StatorTransient
 {
 public:
@@ -126,18 +130,21 @@ public:
 
   /// The full sample (loads included) for the physical state y at time t.
   TransientSample sample(double t, const std::array<double, 8> &y) const;
-  /// The initial state (Z, Z', a_sx, a_sy, a_sx', a_sy', beta, V).
+  /// The initial state (Z, Z', a_x, a_y, a_x', a_y', beta, V), a the relative tilt.
   std::array<double, 8> initial_state() const;
 
 private:
   struct Evaluation;
   Evaluation evaluate(double t, const std::array<double, 8> &y) const;
   std::array<double, 8> rate(double t, const std::array<double, 8> &y) const;
+  /// The rotor's tilt vector in the integration frame at the shaft angle psi.
+  std::array<double, 2> rotor_tilt(double shaft_angle) const;
 
   const FlexibleStatorSeal &seal;
   const FilmForceModel &film;
   TransientSettings settings;
   std::array<double, 8> scale;
+  bool rotating; ///< stator-tilt state (y[2..5]) in the frame turning with the shaft
   mutable unsigned long evaluations = 0;
 };
 } // namespace sealfe
