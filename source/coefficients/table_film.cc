@@ -1,5 +1,8 @@
 #include <sealfe/coefficients/table_film.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <stdexcept>
 
 namespace sealfe
@@ -23,15 +26,29 @@ std::string TableFilm::description() const
 
 FilmLoads TableFilm::loads(const FilmState &state) const
 {
-  if (state.axial_velocity != 0.0 || state.tilt_rate_x != 0.0 || state.tilt_rate_y != 0.0)
-    throw std::runtime_error("Table film: the table " + name +
-                             " has no loads for a state with axial or tilt velocity (it holds "
-                             "steady states only)");
+  // turn a tilt onto the table's direction (rotational invariance of an axisymmetric face)
+  const auto &axes = table_->axes();
+  const bool angle_swept = std::find(axes.begin(), axes.end(), "tilt_angle") != axes.end();
+  double turn = 0;
+  FilmState s = state;
+  if (!angle_swept && geometry.wave_amplitude == 0 && (s.tilt_x != 0 || s.tilt_y != 0))
+  {
+    turn = table_->constant_point().tilt_angle - s.apply(geometry).tilt_angle;
+    const double c = std::cos(turn), sn = std::sin(turn);
+    auto rotate = [&](double &x, double &y)
+    {
+      const double rx = c * x - sn * y, ry = sn * x + c * y;
+      x = rx;
+      y = ry;
+    };
+    rotate(s.tilt_x, s.tilt_y);
+    rotate(s.tilt_rate_x, s.tilt_rate_y);
+  }
   // The film is C0 + z + ...: an axial offset z is a clearance C0 + z for the table.
-  FilmThickness film = state.apply(geometry);
+  FilmThickness film = s.apply(geometry);
   film.clearance += film.axial_offset;
   film.axial_offset = 0;
-  const OperatingPoint point = OperatingPoint::of(film, state.apply(operating));
+  const OperatingPoint point = OperatingPoint::of(film, s.apply(operating));
   FilmLoads l;
   const std::pair<const char *, double *> columns[] = {
       {"force_z", &l.force_z},
@@ -52,6 +69,22 @@ FilmLoads TableFilm::loads(const FilmState &state) const
       throw std::runtime_error("Table film: the table " + name +
                                " has no loads for this state (no " + column + " column)");
     *value = table_->value(column, point);
+  }
+  const double v[3] = {s.axial_velocity, s.tilt_rate_x, s.tilt_rate_y};
+  if (v[0] != 0 || v[1] != 0 || v[2] != 0)
+  {
+    const FilmCoefficients k = table_->coefficients(point);
+    double *load[3] = {&l.force_z, &l.moment_x, &l.moment_y};
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        *load[i] -= k.damping[i][j] * v[j];
+  }
+  if (turn != 0)
+  {
+    const double c = std::cos(-turn), sn = std::sin(-turn);
+    const double mx = c * l.moment_x - sn * l.moment_y, my = sn * l.moment_x + c * l.moment_y;
+    l.moment_x = mx;
+    l.moment_y = my;
   }
   return l;
 }

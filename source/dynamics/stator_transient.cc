@@ -125,8 +125,16 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
                     "misalignment without runout). auto: rotating unless there is no runout "
                     "and a stator misalignment (doc/transient.md).");
   prm.declare_entry("Film level", "closed form", Selection(film_level_pattern()),
-                    "closed form: narrow seal (level 0). table and finite element are not "
-                    "available in this version of the transient.");
+                    "closed form (level 0): narrow seal, none or half-Sommerfeld (Green 2002); "
+                    "table (level 1): FE loads interpolated in Table file, the squeeze part "
+                    "from its damping; finite element (level 2): an FE solve at each "
+                    "evaluation (subsections Discretization, Cavitation, Roughness; any "
+                    "cavitation model; Contact/Model must stay none).");
+  prm.declare_entry("Table file", "", Anything(),
+                    "Film level = table: the CSV of `sealfe table` with load columns, over the "
+                    "clearance, coning, tilt, speed and pressure the transient visits.");
+  prm.declare_entry("Table interpolation", "cubic", Selection("cubic|linear"),
+                    "Film level = table: cubic Lagrange (4 nodes per axis) or multilinear.");
   prm.leave_subsection();
 }
 
@@ -387,7 +395,7 @@ TransientSample StatorTransient::sample(const double t, const State &y) const
   s.rotor_tilt_y = rotor[1];
   s.relative_tilt = std::hypot(e.state.tilt_x, e.state.tilt_y);
   s.coning = e.state.coning;
-  s.min_film = std::min(e.contact.min_film, e.film.min_film > 0 ? e.film.min_film : INFINITY);
+  s.min_film = e.state.apply(seal.geometry).minimum().value; // exact: on r = ri or ro
   s.min_film_over_sigma = s.min_film / seal.contact.composite_roughness();
   s.heating_film = e.heating_film;
   s.film_force = e.film.force_z;

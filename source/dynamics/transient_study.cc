@@ -1,9 +1,11 @@
 #include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/closed_form/narrow_seal_film.h>
 #include <sealfe/dynamics/equilibrium.h>
+#include <sealfe/dynamics/film_levels.h>
 #include <sealfe/dynamics/transient_study.h>
 #include <sealfe/film/cavitation.h>
 #include <sealfe/io/output.h>
+#include <sealfe/io/python_plot.h>
 
 #include <chrono>
 #include <cmath>
@@ -18,29 +20,93 @@ namespace sealfe
 {
 namespace
 {
-/// The film of the chosen level; only the closed form (level 0) is available here so far.
-std::unique_ptr<NarrowSealFilm> make_film(dealii::ParameterHandler &prm,
-                                          const FlexibleStatorSeal &seal)
+/// Counts the evaluations of a film (the equilibrium's cost in summary.json).
+class CountedFilm : public FilmForceModel
+{
+public:
+  explicit CountedFilm(std::shared_ptr<const FilmForceModel> film) : film(std::move(film)) {}
+  FilmLevel level() const override { return film->level(); }
+  std::string description() const override { return film->description(); }
+  FilmLoads loads(const FilmState &state) const override
+  {
+    ++count;
+    return film->loads(state);
+  }
+  FilmCoefficients coefficients(const FilmState &state) const override
+  {
+    return film->coefficients(state);
+  }
+  unsigned long evaluations() const { return count; }
+
+private:
+  std::shared_ptr<const FilmForceModel> film;
+  mutable unsigned long count = 0;
+};
+
+/// The film of the level the prm chooses (Transient/Film level): level 0 the narrow seal with the
+/// prm's cavitation (none or half-Sommerfeld) and quadrature, level 1 a table of FE loads made
+/// beforehand (Transient/Table file), level 2 an FE solve at each evaluation (any cavitation
+/// model; the mesh and DoFs are built once and reused).
+std::shared_ptr<const FilmForceModel> make_film(dealii::ParameterHandler &prm,
+                                                const FlexibleStatorSeal &seal)
 {
   prm.enter_subsection("Transient");
   const FilmLevel level = film_level_from_string(prm.get("Film level"));
+  const std::string table_file = prm.get("Table file");
+  const std::string interpolation = prm.get("Table interpolation");
   prm.leave_subsection();
   CavitationSettings cavitation;
   cavitation.parse_parameters(prm);
-  if (level != FilmLevel::closed_form)
-    throw std::runtime_error("Transient: Film level = " + to_string(level) +
-                             " is not available yet for equilibrium/transient (use closed form)");
-  if (cavitation.is_nonlinear())
-    throw std::runtime_error("Cavitation: the closed-form film (level 0) gives none or "
-                             "half-sommerfeld only, not reynolds or jfo");
-  NarrowSealQuadrature quadrature;
-  quadrature.parse_parameters(prm);
-  return std::make_unique<NarrowSealFilm>(seal.geometry, seal.conditions, quadrature,
-                                          cavitation.model, cavitation.pressure);
+  if (level == FilmLevel::closed_form)
+  {
+    if (cavitation.is_nonlinear())
+      throw std::runtime_error("Cavitation: the closed-form film (level 0) gives none or "
+                               "half-sommerfeld only, not reynolds or jfo (use Transient/Film "
+                               "level = finite element)");
+    NarrowSealQuadrature quadrature;
+    quadrature.parse_parameters(prm);
+    return std::make_shared<NarrowSealFilm>(seal.geometry, seal.conditions, quadrature,
+                                            cavitation.model, cavitation.pressure);
+  }
+  FilmLevelSources sources;
+  if (level == FilmLevel::table)
+  {
+    if (table_file.empty())
+      throw std::runtime_error("Transient: Film level = table needs Transient/Table file (the "
+                               "CSV of `sealfe table` with load columns over the states the "
+                               "transient visits)");
+    try
+    {
+      sources.table = std::make_shared<const CoefficientTable>(
+          table_file, interpolation == "linear" ? CoefficientTable::Interpolation::linear
+                                                : CoefficientTable::Interpolation::cubic);
+    }
+    catch (const std::exception &e)
+    {
+      throw std::runtime_error(std::string("Transient: Table file: ") + e.what());
+    }
+    sources.table_name = table_file;
+  }
+  else
+  {
+    sources.film_solver.parse_solver_parameters(prm);
+    sources.coefficient_method.parse_parameters(prm);
+    if (sources.film_solver.contact.enabled())
+      throw std::runtime_error("Contact/Model must be none for the transient's finite-element "
+                               "film: Face contact adds the asperity contact with the local "
+                               "film, the film's own would count it twice");
+    // one FE solve per evaluation: the discretisation error is estimated once, not each time
+    sources.film_solver.estimate_error = false;
+  }
+  return make_film_force_model(level, seal.geometry, seal.conditions, sources);
 }
 
 void declare_case(dealii::ParameterHandler &prm)
 {
+  // the finite-element film's subsections first: the transient's own defaults (Cavitation,
+  // Contact via Face contact) are declared after them and win
+  FilmSettings::declare_solver_parameters(prm);
+  CoefficientSettings::declare_parameters(prm);
   FlexibleStatorSeal::declare_parameters(prm);
   TransientSettings::declare_parameters(prm);
   // the level-0 film of the transient needs only a coarse quadrature (smooth, mostly
@@ -66,7 +132,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   FlexibleStatorSeal seal;
   seal.parse_parameters(prm);
   seal.validate();
-  const auto film = make_film(prm, seal);
+  const auto film = std::make_shared<CountedFilm>(make_film(prm, seal));
   FilmState state;
   state.rotor_speed = seal.conditions.rotor_speed;
   state.stator_speed = seal.conditions.stator_speed;
@@ -88,8 +154,9 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   nlohmann::json s;
   s["clearance"] = seal.geometry.clearance + eq.axial_offset;
   s["axial_offset"] = eq.axial_offset;
-  s["min_film"] = eq.contact.min_film;
-  s["min_film_over_sigma"] = eq.contact.min_film / seal.contact.composite_roughness();
+  const double min_film = state.apply(seal.geometry).minimum().value;
+  s["min_film"] = min_film;
+  s["min_film_over_sigma"] = min_film / seal.contact.composite_roughness();
   s["coning"] = eq.coning;
   s["opening_force"] = eq.film.force_z;
   s["contact_force"] = eq.contact.force;
@@ -202,30 +269,6 @@ nlohmann::json events(const std::vector<TransientSample> &rows, const double thr
           {"leaked_volume", rows.empty() ? 0.0 : rows.back().leaked_volume}};
 }
 
-std::string plot(const std::string &dir, std::string &note)
-{
-  std::string here = __FILE__;
-  const auto slash = here.find_last_of('/');
-  const std::string script = here.substr(0, slash) + "/../../scripts/plot_transient.py";
-  if (!std::ifstream(script).good())
-  {
-    note = "plot skipped: " + script + " not found";
-    return "";
-  }
-  for (const std::string py : {"/usr/bin/python3", "python3"})
-  {
-    if (std::system((py + " -c 'import matplotlib' > /dev/null 2>&1").c_str()) != 0)
-      continue;
-    const std::string cmd = py + " '" + script + "' '" + dir + "/transient.csv' '" + dir +
-                            "/transient.png' > /dev/null 2>&1";
-    if (std::system(cmd.c_str()) == 0)
-      return "transient.png";
-    note = "plot failed: " + cmd;
-    return "";
-  }
-  note = "plot skipped: no python3 with matplotlib";
-  return "";
-}
 } // namespace
 
 nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
@@ -266,12 +309,13 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   nlohmann::json files = {"transient.csv"};
   if (want_plot && !result.samples.empty())
   {
-    std::string note;
-    const std::string png = plot(dir, note);
-    if (!png.empty())
-      files.push_back(png);
+    const PlotResult plot = run_plot_script(
+        "plot_transient.py", {dir + "/transient.csv", dir + "/transient.png"},
+        dir + "/transient.png");
+    if (plot.made)
+      files.push_back("transient.png");
     else
-      s["plot_note"] = note;
+      s["plot_note"] = plot.note;
   }
   s["files"] = files;
   if (!result.complete)

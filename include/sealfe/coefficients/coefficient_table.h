@@ -97,6 +97,8 @@ public:
   unsigned int n_check_points() const { return check_rows.size(); }
   unsigned int n_failed_points() const { return failed; }
   bool has_column(const std::string &name) const { return column_index.count(name) > 0; }
+  /// The values of the quantities the table did not sweep (swept ones: their first row's).
+  const OperatingPoint &constant_point() const { return constants; }
 
   /// One numeric column (e.g. "K_tx_ty", "force_z") interpolated at `point`. Throws
   /// std::runtime_error if the point lies outside the grid, differs from the table in a quantity

@@ -21,9 +21,13 @@ public:
 
   FilmLevel level() const override { return FilmLevel::table; }
   std::string description() const override;
-  /// The table's load columns at the state, for a steady state only (axial offset as a change of
-  /// clearance; tilt as tilt and tilt angle). Throws std::runtime_error (one line) when the table
-  /// has no loads for the state: velocities not zero, or load columns missing.
+  /// The table's load columns at the state (axial offset as a change of clearance; tilt as tilt
+  /// and tilt angle). A tilt in another direction than the table's (tilt angle not swept, no
+  /// waviness) is turned onto the table's direction and the moments turned back: an axisymmetric
+  /// face is invariant under rotation. Squeeze rates add -D v with the table's damping at the
+  /// state: exact for a full film (the Reynolds pressure is linear in the squeeze rates at fixed
+  /// h), a linearisation in the rates where the film cavitates. Throws std::runtime_error (one
+  /// line) when the table has no loads for the state (outside it, or load columns missing).
   FilmLoads loads(const FilmState &state) const override;
   /// CoefficientTable::coefficients at the state (the state's tilt, coning, speeds, pressures).
   FilmCoefficients coefficients(const FilmState &state) const override;
