@@ -51,9 +51,12 @@ void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
 {
   // CG needs a symmetric matrix: the cavitation Newton systems never get it, whatever the
   // setting asks for.
-  const bool use_direct =
-      choice == FilmSettings::LinearSolver::direct ||
-      (choice == FilmSettings::LinearSolver::automatic && matrix_in.m() < direct_solver_limit);
+  // `auto` factorises the nonsymmetric Newton systems at every size: GMRES with ML AMG (NSSA or
+  // SA) diverged on the JFO Jacobian (33024 unknowns: residual 2e7 after 3302 iterations), whose
+  // columns mix pressure-flow (P A) and void-transport (G) couplings.
+  const bool use_direct = choice == FilmSettings::LinearSolver::direct ||
+                          (choice == FilmSettings::LinearSolver::automatic &&
+                           (!symmetric_in || matrix_in.m() < direct_solver_limit));
   const Method method = use_direct     ? Method::direct
                         : symmetric_in ? Method::cg_amg
                                        : Method::gmres_amg;
@@ -170,6 +173,20 @@ unsigned int FilmLinearSolver::solve(const VectorType &rhs, VectorType &x)
   }
   if (current_method == Method::direct)
   {
+    direct->solve(x, rhs);
+    return 1;
+  }
+  if (current_method == Method::gmres_amg)
+  {
+    // Asked for explicitly (`cg-amg` with a cavitation model): GMRES + AMG, and the KLU
+    // factorisation if that does not converge, so that every size gets an answer.
+    VectorType start(x);
+    const unsigned int its = krylov_solve(rhs, x, gmres_iteration_limit, false);
+    if (its != std::numeric_limits<unsigned int>::max())
+      return its;
+    x = start;
+    current_method = Method::direct;
+    build_preconditioner();
     direct->solve(x, rhs);
     return 1;
   }

@@ -22,7 +22,9 @@ namespace sealfe
 ///  - cg-amg (symmetric A: full film, linearised full film): CG + smoothed-aggregation AMG whose
 ///    aggregates are built on the distance Laplacian of the dof support points (ML "aux"
 ///    aggregation), so they follow the short direction of the long, thin cells of the annulus;
-///  - gmres-amg (nonsymmetric A: the cavitation Newton systems): GMRES with the same AMG.
+///  - gmres-amg (nonsymmetric A: the cavitation Newton systems, only with `Linear solver =
+///    cg-amg`): GMRES with the same AMG, falling back to KLU when it does not converge. `auto`
+///    factorises nonsymmetric systems at every size (CG is never used on them).
 /// A sequence of nonsymmetric systems with one sparsity pattern (Newton iterations) solved by
 /// gmres-amg keeps the AMG hierarchy of an earlier matrix as long as GMRES converges in
 /// lagged_iteration_limit iterations with it. Every solve reaches the relative residual
@@ -50,6 +52,8 @@ public:
   static constexpr unsigned int direct_solver_limit = 150000;
   /// A lagged preconditioner is rebuilt when GMRES needs more than this.
   static constexpr unsigned int lagged_iteration_limit = 60;
+  /// gmres-amg falls back to KLU after this many iterations.
+  static constexpr unsigned int gmres_iteration_limit = 200;
 
   /// Prepare to solve with `matrix` (kept by reference until the next prepare()). `support_x`,
   /// `support_y`: coordinates of the locally owned dofs (only used by the AMG methods).
