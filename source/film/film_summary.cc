@@ -44,6 +44,14 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   summary["dofs"] = solver.n_dofs();
   summary["polynomial_degree"] = solver.degree();
   summary["linear_iterations"] = solver.linear_iterations();
+  const FilmLinearSolver &linear = solver.linear_solver_statistics();
+  summary["linear_solver"] = {
+      {"method", linear.method_name()},
+      {"factorizations", linear.statistics().factorizations},
+      {"solves", linear.statistics().solves},
+      {"krylov_iterations", linear.statistics().krylov_iterations},
+      {"max_krylov_iterations", linear.statistics().max_krylov_iterations},
+      {"reused_preconditioners", linear.statistics().reused_preconditioners}};
   summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
   // Discrete mass balance: what leaves through the two circles plus the squeeze flow, relative
   // to the larger leakage (zero to solver tolerance for none and jfo).

@@ -270,7 +270,7 @@ void JFOSolver::recover()
 
 void JFOSolver::newton_direction()
 {
-  s.factorize();
+  s.factorize(false, true);
   w = 0;
   s.solve_linear_system(newton_rhs, w);
   s.homogeneous_constraints.set_zero(w);
@@ -293,7 +293,7 @@ bool JFOSolver::polish()
     tv = set_v;
     assemble(ta, tv, true, true);
     ++active_set_rounds;
-    s.factorize();
+    s.factorize(false, true);
     w = 0;
     s.solve_linear_system(newton_rhs, w);
     s.homogeneous_constraints.set_zero(w);
@@ -457,7 +457,7 @@ void JFOSolver::store_solution()
 {
   // The last assembly built the Jacobian at the solution: factorise it for linearized_loads,
   // and keep which unknown each node kept with its complementarity derivatives.
-  s.factorize();
+  s.factorize(false, true);
   s.jfo_keep_pressure.reinit(s.locally_owned_dofs, s.mpi_communicator);
   s.jfo_elimination.reinit(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)

@@ -116,7 +116,7 @@ void ReynoldsCavitationSolver::solve()
       break;
     }
     previous_set = set;
-    s.factorize();
+    s.factorize(false, true);
     du = 0;
     s.solve_linear_system(rhs, du);
     s.homogeneous_constraints.set_zero(du);
@@ -134,7 +134,7 @@ void ReynoldsCavitationSolver::solve()
     throw std::runtime_error(m.str());
   }
   // The last assembly built the Jacobian at the solution: factorise it for linearized_loads.
-  s.factorize();
+  s.factorize(false, true);
   TrilinosWrappers::MPI::Vector p(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)
     p[i] = s.cavitation.pressure + s.pressure_scale * u_owned[i];

@@ -25,19 +25,13 @@
 #include <deque>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
 namespace sealfe
 {
 using namespace dealii;
-
-namespace
-{
-/// Below this many unknowns a sparse direct solve (KLU) beats AMG-preconditioned CG on 2D
-/// Reynolds problems on this class of machine; above it the fill-in of the direct solver grows.
-constexpr types::global_dof_index direct_solver_limit = 150000;
-} // namespace
 
 ReynoldsSolver::ReynoldsSolver(MPI_Comm comm) : ReynoldsSolver(FilmSettings(), comm) {}
 
@@ -72,6 +66,9 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   }
   dof_handler.clear();
   triangulation.clear();
+  linear_system_solver.clear();
+  amg_support_x.clear();
+  amg_support_y.clear();
   // Grading from C0 and coning only, so that perturbing z or the tilts (finite-difference
   // coefficients, transients) keeps the same mesh.
   mesh_parameters.grading_clearance = film.clearance;
@@ -169,55 +166,32 @@ void ReynoldsSolver::assemble_system()
   system_rhs.compress(VectorOperation::add);
 }
 
-void ReynoldsSolver::factorize()
+void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence)
 {
-  // One factorisation (or AMG hierarchy) per matrix, reused by the solve and by every linearised
-  // solve of the dynamic coefficients.
-  use_direct_solver =
-      linear_solver == LinearSolver::direct ||
-      (linear_solver == LinearSolver::automatic && dof_handler.n_dofs() < direct_solver_limit);
-  direct_control = std::make_unique<SolverControl>(1, 0);
-  if (use_direct_solver)
+  TimerOutput::Scope t(timer, "linear solver setup");
+  // The AMG aggregates on the dof support points (film_linear_solver.h): built once per mesh,
+  // and only for the sizes that use AMG.
+  const bool may_use_amg = linear_solver == LinearSolver::cg_amg ||
+                           (linear_solver == LinearSolver::automatic &&
+                            dof_handler.n_dofs() >= FilmLinearSolver::direct_solver_limit);
+  if (may_use_amg && amg_support_x.empty())
   {
-    direct_solver = std::make_unique<TrilinosWrappers::SolverDirect>(*direct_control);
-    direct_solver->initialize(system_matrix);
+    std::map<types::global_dof_index, Point<2>> support;
+    DoFTools::map_dofs_to_support_points(*mapping, dof_handler, support);
+    for (const auto i : locally_owned_dofs)
+    {
+      amg_support_x.push_back(support[i][0]);
+      amg_support_y.push_back(support[i][1]);
+    }
   }
-  else
-  {
-    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    data.elliptic = true;
-    data.higher_order_elements = polynomial_degree > 1;
-    data.smoother_sweeps = 2;
-    data.aggregation_threshold = 0.02;
-    amg->initialize(system_matrix, data);
-  }
+  linear_system_solver.prepare(system_matrix, symmetric, linear_solver, polynomial_degree,
+                               solver_tolerance, amg_support_x, amg_support_y, newton_sequence);
 }
 
 unsigned int ReynoldsSolver::solve_linear_system(const TrilinosWrappers::MPI::Vector &rhs,
                                                  TrilinosWrappers::MPI::Vector &x) const
 {
-  if (use_direct_solver)
-  {
-    direct_solver->solve(x, rhs);
-    return 1;
-  }
-  const double target = solver_tolerance * rhs.l2_norm();
-  SolverControl control(std::max<unsigned int>(1000, dof_handler.n_dofs() / 10),
-                        std::max(target, std::numeric_limits<double>::min()), false, false);
-  SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-  try
-  {
-    cg.solve(system_matrix, x, rhs, *amg);
-  }
-  catch (SolverControl::NoConvergence &e)
-  {
-    std::ostringstream s;
-    s << "Reynolds solver: CG+AMG did not converge in " << e.last_step << " iterations (residual "
-      << e.last_residual << ", target " << target << "); try 'set Linear solver = direct'";
-    throw std::runtime_error(s.str());
-  }
-  return control.last_step();
+  return linear_system_solver.solve(rhs, x);
 }
 
 void ReynoldsSolver::solve()
@@ -440,6 +414,7 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
   timer.reset();
+  linear_system_solver.reset_statistics();
   current_coarsening = coarsening;
   coarse_iterations = 0;
   setup_system(coarsening);

@@ -4,6 +4,7 @@
 // jfo_solver.h), loads (film_loads.h) and output (film_output.h).
 #pragma once
 
+#include <sealfe/film/film_linear_solver.h>
 #include <sealfe/film/film_loads.h>
 #include <sealfe/film/film_settings.h>
 
@@ -117,6 +118,8 @@ public:
   const ReynoldsSolver *coarse_level_solver() const { return coarse_solver.get(); }
   bool error_estimate_enabled() const { return estimate_error; }
   unsigned int linear_iterations() const { return last_iterations; }
+  /// Factorisations, solves and Krylov iterations of the last run (and its linearised solves).
+  const FilmLinearSolver &linear_solver_statistics() const { return linear_system_solver; }
   /// Newton iterations and final relative mass residual of the cavitation solve (reynolds, jfo).
   unsigned int nonlinear_iterations() const { return cavitation_iterations; }
   /// Newton iterations spent on the coarser meshes that provided the JFO start (mesh sequencing).
@@ -154,7 +157,10 @@ private:
   void setup_system(const unsigned int coarsening);
   void setup_constraints();
   void assemble_system();
-  void factorize();
+  /// Prepare the linear solver for system_matrix. `symmetric`: full film or its linearisation
+  /// (CG allowed); `newton_sequence`: the next Jacobian of a Newton iteration (the previous
+  /// factorisation may serve as preconditioner).
+  void factorize(bool symmetric = true, bool newton_sequence = false);
   unsigned int solve_linear_system(const dealii::TrilinosWrappers::MPI::Vector &rhs,
                                    dealii::TrilinosWrappers::MPI::Vector &x) const;
   void solve();
@@ -188,10 +194,10 @@ private:
   dealii::TrilinosWrappers::SparseMatrix system_matrix;
   dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution, system_rhs;
 
-  bool use_direct_solver = true;
-  std::unique_ptr<dealii::SolverControl> direct_control;
-  std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct_solver;
-  std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+  /// KLU or Krylov + AMG (film_linear_solver.h); mutable: the linearised solves of a const
+  /// solver count their work in it.
+  mutable FilmLinearSolver linear_system_solver;
+  std::vector<double> amg_support_x, amg_support_y; // owned dofs' support points (AMG)
 
   double equation_scale = 1; // 12 mu / C0^3
 

@@ -1,0 +1,96 @@
+// FilmLinearSolver: the linear solves of the film's discrete Reynolds systems (full film, the
+// linearised coefficient solves, the Newton steps of the cavitation models), with one Trilinos
+// back-end: sparse direct (Amesos KLU) below a size, Krylov + ML algebraic multigrid above.
+#pragma once
+
+#include <sealfe/film/film_settings.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sealfe
+{
+/// Solves A x = b for the matrices of ReynoldsSolver. Three methods:
+///  - direct: KLU factorisation;
+///  - cg-amg (symmetric A: full film, linearised full film): CG + smoothed-aggregation AMG whose
+///    aggregates are built on the distance Laplacian of the dof support points (ML "aux"
+///    aggregation), so they follow the short direction of the long, thin cells of the annulus;
+///  - gmres-amg (nonsymmetric A: the cavitation Newton systems, only with `Linear solver =
+///    cg-amg`): GMRES with the same AMG, falling back to KLU when it does not converge. `auto`
+///    factorises nonsymmetric systems at every size (CG is never used on them).
+/// A sequence of nonsymmetric systems with one sparsity pattern (Newton iterations) solved by
+/// gmres-amg keeps the AMG hierarchy of an earlier matrix as long as GMRES converges in
+/// lagged_iteration_limit iterations with it. Every solve reaches the relative residual
+/// tolerance, so the answers are those of a fresh preconditioner to that tolerance.
+class FilmLinearSolver
+{
+public:
+  enum class Method
+  {
+    direct,
+    cg_amg,
+    gmres_amg
+  };
+  /// Work counted since construction (summary.json: linear_solver).
+  struct Statistics
+  {
+    unsigned int factorizations = 0; // KLU factorisations or AMG set-ups
+    unsigned int solves = 0;
+    unsigned int krylov_iterations = 0; // CG or GMRES iterations, all solves
+    unsigned int max_krylov_iterations = 0;
+    unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
+  };
+
+  /// Below this many unknowns `auto` factorises (KLU); above it Krylov + AMG.
+  static constexpr unsigned int direct_solver_limit = 150000;
+  /// A lagged preconditioner is rebuilt when GMRES needs more than this.
+  static constexpr unsigned int lagged_iteration_limit = 60;
+  /// gmres-amg falls back to KLU after this many iterations.
+  static constexpr unsigned int gmres_iteration_limit = 200;
+
+  /// Prepare to solve with `matrix` (kept by reference until the next prepare()). `support_x`,
+  /// `support_y`: coordinates of the locally owned dofs (only used by the AMG methods).
+  /// `allow_reuse`: the matrix is the next of a sequence with the same pattern (Newton).
+  void prepare(const dealii::TrilinosWrappers::SparseMatrix &matrix, bool symmetric,
+               FilmSettings::LinearSolver choice, unsigned int degree, double tolerance,
+               const std::vector<double> &support_x, const std::vector<double> &support_y,
+               bool allow_reuse = false);
+  /// Solve the prepared system; returns the Krylov iterations (1 for a direct solve). Throws
+  /// std::runtime_error if the iteration does not converge.
+  unsigned int solve(const dealii::TrilinosWrappers::MPI::Vector &rhs,
+                     dealii::TrilinosWrappers::MPI::Vector &x);
+  /// Forget the factorisation (new mesh).
+  void clear();
+
+  Method method() const { return current_method; }
+  const char *method_name() const;
+  const Statistics &statistics() const { return stats; }
+  void reset_statistics() { stats = Statistics(); }
+
+private:
+  void build_preconditioner();
+  unsigned int krylov_solve(const dealii::TrilinosWrappers::MPI::Vector &rhs,
+                            dealii::TrilinosWrappers::MPI::Vector &x, unsigned int max_iterations,
+                            bool throw_on_failure);
+
+  const dealii::TrilinosWrappers::SparseMatrix *matrix = nullptr;
+  Method current_method = Method::direct;
+  bool symmetric = true;
+  bool lagged = false; // the preconditioner belongs to an earlier matrix
+  unsigned int degree = 1;
+  double tolerance = 1e-12;
+  const std::vector<double> *support_x = nullptr, *support_y = nullptr;
+  std::unique_ptr<dealii::SolverControl> direct_control;
+  std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
+  std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+  Statistics stats;
+};
+
+} // namespace sealfe

@@ -1,0 +1,196 @@
+#include <sealfe/film/film_linear_solver.h>
+
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+using namespace dealii;
+
+namespace
+{
+using VectorType = TrilinosWrappers::MPI::Vector;
+
+} // namespace
+
+const char *FilmLinearSolver::method_name() const
+{
+  switch (current_method)
+  {
+  case Method::direct:
+    return "direct";
+  case Method::cg_amg:
+    return "cg-amg";
+  default:
+    return "gmres-amg";
+  }
+}
+
+void FilmLinearSolver::clear()
+{
+  direct.reset();
+  amg.reset();
+  matrix = nullptr;
+  lagged = false;
+}
+
+void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
+                               const bool symmetric_in, const FilmSettings::LinearSolver choice,
+                               const unsigned int degree_in, const double tolerance_in,
+                               const std::vector<double> &x, const std::vector<double> &y,
+                               const bool allow_reuse)
+{
+  // CG needs a symmetric matrix: the cavitation Newton systems never get it, whatever the
+  // setting asks for.
+  // `auto` factorises the nonsymmetric Newton systems at every size: GMRES with ML AMG (NSSA or
+  // SA) diverged on the JFO Jacobian (33024 unknowns: residual 2e7 after 3302 iterations), whose
+  // columns mix pressure-flow (P A) and void-transport (G) couplings.
+  const bool use_direct = choice == FilmSettings::LinearSolver::direct ||
+                          (choice == FilmSettings::LinearSolver::automatic &&
+                           (!symmetric_in || matrix_in.m() < direct_solver_limit));
+  const Method method = use_direct     ? Method::direct
+                        : symmetric_in ? Method::cg_amg
+                                       : Method::gmres_amg;
+  // Only an AMG hierarchy is worth keeping: the Fischer-Burmeister Jacobians change at every
+  // cavitated node between Newton steps, so an old KLU factorisation made GMRES fail its
+  // iteration limit in 6 of 7 steps (measured), while an AMG hierarchy of a similar matrix stays
+  // a good preconditioner.
+  const bool can_reuse = allow_reuse && method == Method::gmres_amg && !symmetric &&
+                         method == current_method && matrix == &matrix_in && amg;
+  matrix = &matrix_in;
+  symmetric = symmetric_in;
+  current_method = method;
+  degree = degree_in;
+  tolerance = tolerance_in;
+  support_x = &x;
+  support_y = &y;
+  if (can_reuse)
+  {
+    lagged = true;
+    return;
+  }
+  build_preconditioner();
+}
+
+void FilmLinearSolver::build_preconditioner()
+{
+  // One factorisation (or AMG hierarchy) per matrix, reused by the solve and by every linearised
+  // solve of the dynamic coefficients.
+  lagged = false;
+  ++stats.factorizations;
+  direct.reset();
+  amg.reset();
+  if (current_method == Method::direct)
+  {
+    direct_control = std::make_unique<SolverControl>(1, 0);
+    direct = std::make_unique<TrilinosWrappers::SolverDirect>(*direct_control);
+    direct->initialize(*matrix);
+    return;
+  }
+  // Smoothed aggregation. The cells of the annulus are long and thin (a dam ~45 times narrower
+  // than its circumference), so the matrix couples a node far more strongly to its radial
+  // neighbours than to its circumferential ones. ML's default aggregation on the matrix does
+  // not see that through the higher-order stencils (170-470 CG iterations at Ntheta/Nr = 2,
+  // doc/performance.md); aggregating on the distance Laplacian of the support points, with the
+  // weak (long) connections dropped, makes the aggregates follow the short direction (a
+  // semi-coarsening), and a symmetric Gauss-Seidel smoother then damps what remains. Measured:
+  // 20-31 CG iterations for degrees 1-3, aspect Ntheta/Nr 1-32, 3e4-1e6 unknowns.
+  TrilinosWrappers::PreconditionAMG::AdditionalData data;
+  data.elliptic = symmetric;
+  data.higher_order_elements = degree > 1;
+  data.smoother_sweeps = 2;
+  data.aggregation_threshold = 0.02;
+  data.smoother_type = "symmetric Gauss-Seidel";
+  Teuchos::ParameterList list;
+  std::unique_ptr<Epetra_MultiVector> constant_modes;
+  data.set_parameters(list, constant_modes, *matrix);
+  list.set("aggregation: aux: enable", true);
+  list.set("aggregation: aux: threshold", 0.05);
+  list.set("x-coordinates", const_cast<double *>(support_x->data()));
+  list.set("y-coordinates", const_cast<double *>(support_y->data()));
+  amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+  amg->initialize(*matrix, list);
+}
+
+unsigned int FilmLinearSolver::krylov_solve(const VectorType &rhs, VectorType &x,
+                                            const unsigned int max_iterations,
+                                            const bool throw_on_failure)
+{
+  const double target = std::max(tolerance * rhs.l2_norm(), std::numeric_limits<double>::min());
+  SolverControl control(max_iterations, target, false, false);
+  try
+  {
+    if (current_method == Method::cg_amg && !lagged)
+      SolverCG<VectorType>(control).solve(*matrix, x, rhs, *amg);
+    else
+    {
+      // Right preconditioning: the tolerance applies to the true residual.
+      SolverGMRES<VectorType>::AdditionalData gmres_data(50, true);
+      SolverGMRES<VectorType> gmres(control, gmres_data);
+      gmres.solve(*matrix, x, rhs, *amg);
+    }
+  }
+  catch (SolverControl::NoConvergence &e)
+  {
+    stats.krylov_iterations += e.last_step;
+    if (!throw_on_failure)
+      return std::numeric_limits<unsigned int>::max();
+    std::ostringstream s;
+    s << "Reynolds solver: " << method_name() << " did not converge in " << e.last_step
+      << " iterations (residual " << e.last_residual << ", target " << target
+      << "); try 'set Linear solver = direct'";
+    throw std::runtime_error(s.str());
+  }
+  stats.krylov_iterations += control.last_step();
+  stats.max_krylov_iterations = std::max(stats.max_krylov_iterations, control.last_step());
+  return control.last_step();
+}
+
+unsigned int FilmLinearSolver::solve(const VectorType &rhs, VectorType &x)
+{
+  ++stats.solves;
+  if (lagged)
+  {
+    // A preconditioner of an earlier matrix: a few GMRES iterations, else rebuild it.
+    VectorType start(x);
+    const unsigned int its = krylov_solve(rhs, x, lagged_iteration_limit, false);
+    if (its != std::numeric_limits<unsigned int>::max())
+    {
+      ++stats.reused_preconditioners;
+      return its;
+    }
+    x = start;
+    build_preconditioner();
+  }
+  if (current_method == Method::direct)
+  {
+    direct->solve(x, rhs);
+    return 1;
+  }
+  if (current_method == Method::gmres_amg)
+  {
+    // Asked for explicitly (`cg-amg` with a cavitation model): GMRES + AMG, and the KLU
+    // factorisation if that does not converge, so that every size gets an answer.
+    VectorType start(x);
+    const unsigned int its = krylov_solve(rhs, x, gmres_iteration_limit, false);
+    if (its != std::numeric_limits<unsigned int>::max())
+      return its;
+    x = start;
+    current_method = Method::direct;
+    build_preconditioner();
+    direct->solve(x, rhs);
+    return 1;
+  }
+  return krylov_solve(rhs, x, std::max<unsigned int>(1000, matrix->m() / 10), true);
+}
+
+} // namespace sealfe
