@@ -106,6 +106,10 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
                     "from the axial balance at t = 0.");
   prm.declare_entry("Initial axial offset", "-0.65", Double(),
                     "Z(0)/C0 for Initial state = given.");
+  prm.declare_entry("Initial tilt", "0", Double(),
+                    "Relative tilt of the stator to the rotor at t = 0 (rad), the stator at rest "
+                    "in space (0: aligned, as Green 2002).");
+  prm.declare_entry("Initial tilt angle", "0", Double(), "Direction of the initial tilt (rad).");
   prm.declare_entry("Minimum step", "1e-12", Double(0),
                     "Smallest step (s); a step size collapse below it stops the run.");
   prm.declare_entry("Maximum steps per output", "200000", Integer(1),
@@ -147,6 +151,8 @@ void TransientSettings::parse_parameters(dealii::ParameterHandler &prm)
   output_interval = prm.get_double("Output interval");
   start_at_rest_equilibrium = prm.get("Initial state") == "rest equilibrium";
   initial_axial_offset = prm.get_double("Initial axial offset");
+  initial_tilt = prm.get_double("Initial tilt");
+  initial_tilt_angle = prm.get_double("Initial tilt angle");
   minimum_step = prm.get_double("Minimum step");
   maximum_steps = prm.get_integer("Maximum steps per output");
   contact_threshold = prm.get_double("Contact threshold");
@@ -355,14 +361,18 @@ State StatorTransient::rate(const double t, const State &y) const
 
 State StatorTransient::initial_state() const
 {
-  // the stator rests on the rotor: aligned with it (a = 0) and not moving in space
-  // (a' = -omega J a_r, the same in both frames at psi = 0)
+  // the stator at rest in space, tilted by the initial relative tilt a(0) (0: resting aligned
+  // on the rotor, Green 2002); a_s' = 0 gives a' = -omega J a_r in the inertial frame and
+  // a' = -omega J (a + a_r) in the turning one (psi = 0)
   State y{};
   const auto r = seal.runout.vector(0);
   const double omega = seal.ramps.speed.value(0);
   y[0] = settings.initial_axial_offset * seal.geometry.clearance;
-  y[4] = omega * r[1];
-  y[5] = -omega * r[0];
+  y[2] = settings.initial_tilt * std::sin(settings.initial_tilt_angle);
+  y[3] = -settings.initial_tilt * std::cos(settings.initial_tilt_angle);
+  const double bx = rotating ? y[2] + r[0] : r[0], by = rotating ? y[3] + r[1] : r[1];
+  y[4] = omega * by;
+  y[5] = -omega * bx;
   y[6] = seal.thermal.initial_coning;
   if (settings.start_at_rest_equilibrium)
   {

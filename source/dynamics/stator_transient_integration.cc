@@ -113,6 +113,8 @@ StatorTransient::Result StatorTransient::run() const
   const State y0 = initial_state();
   const State dy0 = rate(0, y0);
   result.samples.push_back(sample(0, y0));
+  if (after_output)
+    after_output(0);
 
   IdaObjects ida;
   check(SUNContext_Create(nullptr, &ida.context), "SUNContext_Create");
@@ -190,6 +192,8 @@ StatorTransient::Result StatorTransient::run() const
     for (unsigned int i = 0; i < n; ++i)
       y[i] = NV_Ith_S(ida.y, i) * scale[i];
     result.samples.push_back(sample(t_out, y));
+    if (after_output)
+      after_output(t_out);
   }
   result.complete = result.stop_reason.empty();
   long steps = 0, fails = 0, conv = 0, setups = 0;

@@ -1,11 +1,16 @@
 #include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/closed_form/narrow_seal_film.h>
+#include <sealfe/coefficients/finite_element_film.h>
 #include <sealfe/dynamics/equilibrium.h>
 #include <sealfe/dynamics/film_levels.h>
 #include <sealfe/dynamics/transient_study.h>
 #include <sealfe/film/cavitation.h>
+#include <sealfe/film/film_output.h>
 #include <sealfe/io/output.h>
 #include <sealfe/io/python_plot.h>
+#include <sealfe/numerics/number_lists.h>
+
+#include <deal.II/base/data_out_base.h>
 
 #include <chrono>
 #include <cmath>
@@ -199,6 +204,11 @@ void declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Plot", "true", dealii::Patterns::Bool(),
                     "Write transient.png (histories like Green 2002 Figs. 4-5) with "
                     "scripts/plot_transient.py, if python3 with matplotlib is found.");
+  prm.declare_entry("Field output times", "", dealii::Patterns::Anything(),
+                    "Film level = finite element: times (s, list or start : stop : count) at "
+                    "which the film's fields (pressure, film thickness, liquid fraction) are "
+                    "written, at the first output row at or after each; a time series "
+                    "transient_fields.pvd for ParaView. Empty: none.");
   prm.leave_subsection();
 }
 
@@ -282,12 +292,40 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   settings.validate();
   prm.enter_subsection("Transient");
   const bool want_plot = prm.get_bool("Plot");
+  const std::vector<double> field_times =
+      numerics::parse_number_list(prm.get("Field output times"), "Transient/Field output times");
   prm.leave_subsection();
   const auto film = make_film(prm, seal);
 
-  const StatorTransient transient(seal, *film, settings);
+  StatorTransient transient(seal, *film, settings);
+  // the fields of a level-2 film at the chosen times, written while the run goes on
+  std::vector<std::pair<double, std::string>> field_records;
+  std::size_t next_field = 0;
+  if (!field_times.empty())
+  {
+    const auto fe = std::dynamic_pointer_cast<const FiniteElementFilm>(film);
+    if (!fe)
+      throw std::runtime_error("Transient: Field output times need Film level = finite element "
+                               "(the closed form and the table have no fields)");
+    output::make_directory(dir);
+    transient.after_output = [&, fe](const double t)
+    {
+      if (next_field == field_times.size() || t < field_times[next_field] - 1e-12)
+        return;
+      while (next_field < field_times.size() && t >= field_times[next_field] - 1e-12)
+        ++next_field;
+      field_records.emplace_back(
+          t, write_film_fields(fe->reynolds(), dir, "transient_fields", field_records.size()));
+    };
+  }
   const StatorTransient::Result result = transient.run();
   output::make_directory(dir);
+  if (!field_records.empty())
+  {
+    std::ostringstream pvd;
+    dealii::DataOutBase::write_pvd_record(pvd, field_records);
+    output::write_file_atomically(dir, "transient_fields.pvd", pvd.str());
+  }
   output::write_file_atomically(dir, "transient.csv", csv_text(result.samples));
 
   nlohmann::json s = events(result.samples, settings.contact_threshold);
@@ -307,11 +345,13 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   s["integration_wall_time"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json files = {"transient.csv"};
+  if (!field_records.empty())
+    files.push_back("transient_fields.pvd");
   if (want_plot && !result.samples.empty())
   {
-    const PlotResult plot = run_plot_script(
-        "plot_transient.py", {dir + "/transient.csv", dir + "/transient.png"},
-        dir + "/transient.png");
+    const PlotResult plot =
+        run_plot_script("plot_transient.py", {dir + "/transient.csv", dir + "/transient.png"},
+                        dir + "/transient.png");
     if (plot.made)
       files.push_back("transient.png");
     else

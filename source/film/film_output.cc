@@ -69,7 +69,8 @@ private:
 };
 } // namespace
 
-std::string write_film_output(const ReynoldsSolver &s, const std::string &directory)
+std::string write_film_fields(const ReynoldsSolver &s, const std::string &directory,
+                              const std::string &basename, const unsigned int counter)
 {
   FilmPostprocessor postprocessor([&s](const Point<2> &x) { return s.local_film(x); });
   DataOut<2> data_out;
@@ -105,8 +106,13 @@ std::string write_film_output(const ReynoldsSolver &s, const std::string &direct
   flags.write_higher_order_cells = false;
   data_out.set_flags(flags);
   data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
-  const std::string pvtu =
-      data_out.write_vtu_with_pvtu_record(directory + "/", "solution", 0, s.mpi_communicator, 4, 1);
+  return data_out.write_vtu_with_pvtu_record(directory + "/", basename, counter, s.mpi_communicator,
+                                             4, 1);
+}
+
+std::string write_film_output(const ReynoldsSolver &s, const std::string &directory)
+{
+  const std::string pvtu = write_film_fields(s, directory, "solution", 0);
   if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
   {
     std::ofstream pvd(directory + "/solution.pvd");

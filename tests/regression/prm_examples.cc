@@ -120,7 +120,8 @@ TEST_P(PrmExample, RunsAndKeepsItsPinnedResults)
 
 INSTANTIATE_TEST_SUITE_P(Prm, PrmExample,
                          ::testing::Values("solve", "wavy_jfo", "coefficients", "table",
-                                           "stability", "response", "annular"),
+                                           "stability", "response", "annular", "equilibrium",
+                                           "transient"),
                          [](const auto &info) { return info.param; });
 
 TEST(PrmExamples, EveryExampleHasAReference)
@@ -135,5 +136,5 @@ TEST(PrmExamples, EveryExampleHasAReference)
       references.insert(file.substr(0, file.size() - 15));
   }
   EXPECT_EQ(examples, references);
-  EXPECT_EQ(examples.size(), 7u); // the instantiation above lists them
+  EXPECT_EQ(examples.size(), 9u); // the instantiation above lists them
 }

@@ -13,6 +13,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,8 @@ struct TransientSettings
   double absolute_tolerance = 1e-5; ///< on the scaled state (Z/C0, tilt ro/C0, ...)
   double output_interval = 0.01;
   double initial_axial_offset = -0.65; ///< Z(0)/C0
+  double initial_tilt = 0;             ///< relative tilt |a(0)| (rad), stator at rest in space
+  double initial_tilt_angle = 0;       ///< its direction (rad)
   bool start_at_rest_equilibrium = false;
   double minimum_step = 1e-12;
   unsigned long maximum_steps = 2000000;
@@ -127,6 +130,10 @@ public:
   /// Integrates from the initial state to the end time. A failure of the integrator (step size
   /// collapse, film out of range) stops the run: the samples so far are kept, complete = false.
   Result run() const;
+
+  /// Called with each output time right after its row is sampled (the film has just been
+  /// evaluated at that state: a finite-element film holds its fields), e.g. to write them.
+  std::function<void(double time)> after_output;
 
   /// The full sample (loads included) for the physical state y at time t.
   TransientSample sample(double t, const std::array<double, 8> &y) const;

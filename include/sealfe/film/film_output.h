@@ -12,4 +12,9 @@ class ReynoldsSolver;
 /// the PVD file name, "solution.pvd". Collective over the solver's communicator.
 std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory);
 
+/// The same fields as `<basename>_<counter>.pvtu` (+ its VTU pieces) without a PVD, for a time
+/// series whose PVD the caller writes; returns the PVTU file name.
+std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
+                              const std::string &basename, unsigned int counter);
+
 } // namespace sealfe

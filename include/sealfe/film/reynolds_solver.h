@@ -153,6 +153,8 @@ private:
   friend class JFOSolver;
   friend class LoadIntegrator;
   friend std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory);
+  friend std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
+                                       const std::string &basename, unsigned int counter);
 
   void setup_system(const unsigned int coarsening);
   void setup_constraints();
