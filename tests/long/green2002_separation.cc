@@ -1,3 +1,4 @@
+// (tests/long: ~30 s CPU — two 25-s and one 10-s held-speed transients.)
 // Green 2002, separation of a contacting seal (Fig. 6 conditions: no pressure drop, no thermal
 // coning, rotor runout gamma_r = 1e-3 rad): the quasi-static physics that sets the separation
 // speed, derived here from the narrow-seal model and the angular equation of motion, not from the
