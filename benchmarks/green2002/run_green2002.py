@@ -360,7 +360,7 @@ def main():
             for Ks in stiffness:
                 name = "fig6_p%g_Ks%g" % (ambient, Ks)
                 w_est = rigid_separation_speed(Ks, ambient, F_SPRING - K_SZ * C0, 0.0)
-                end = min(1.3 * w_est / ALPHA, 2.0)
+                end = min(1.5 * w_est / ALPHA, 2.0)
                 data, s, wall, ok = run(binary, workdir, name,
                                         separation_prm(name, Ks, ambient, end), args.repeat)
                 fc0 = data["contact force"][0]
