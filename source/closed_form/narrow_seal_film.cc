@@ -22,7 +22,6 @@ std::string NarrowSealFilm::description() const
 
 FilmLoads NarrowSealFilm::loads(const FilmState &state) const
 {
-  ++n_evaluations;
   const NarrowSealModel model(state.apply(geometry), state.apply(operating), cavitation,
                               cavitation_pressure);
   return model.loads(quadrature);

@@ -1,7 +1,6 @@
 #include <sealfe/coefficients/table_film.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include <stdexcept>
 
@@ -29,21 +28,11 @@ FilmLoads TableFilm::loads(const FilmState &state) const
   // turn a tilt onto the table's direction (rotational invariance of an axisymmetric face)
   const auto &axes = table_->axes();
   const bool angle_swept = std::find(axes.begin(), axes.end(), "tilt_angle") != axes.end();
-  double turn = 0;
-  FilmState s = state;
-  if (!angle_swept && geometry.wave_amplitude == 0 && (s.tilt_x != 0 || s.tilt_y != 0))
-  {
-    turn = table_->constant_point().tilt_angle - s.apply(geometry).tilt_angle;
-    const double c = std::cos(turn), sn = std::sin(turn);
-    auto rotate = [&](double &x, double &y)
-    {
-      const double rx = c * x - sn * y, ry = sn * x + c * y;
-      x = rx;
-      y = ry;
-    };
-    rotate(s.tilt_x, s.tilt_y);
-    rotate(s.tilt_rate_x, s.tilt_rate_y);
-  }
+  const double turn =
+      (!angle_swept && geometry.wave_amplitude == 0 && (state.tilt_x != 0 || state.tilt_y != 0))
+          ? table_->constant_point().tilt_angle - state.apply(geometry).tilt_angle
+          : 0.0;
+  const FilmState s = state.turned(turn);
   // The film is C0 + z + ...: an axial offset z is a clearance C0 + z for the table.
   FilmThickness film = s.apply(geometry);
   film.clearance += film.axial_offset;
@@ -79,13 +68,9 @@ FilmLoads TableFilm::loads(const FilmState &state) const
       for (unsigned int j = 0; j < 3; ++j)
         *load[i] -= k.damping[i][j] * v[j];
   }
-  if (turn != 0)
-  {
-    const double c = std::cos(-turn), sn = std::sin(-turn);
-    const double mx = c * l.moment_x - sn * l.moment_y, my = sn * l.moment_x + c * l.moment_y;
-    l.moment_x = mx;
-    l.moment_y = my;
-  }
+  const auto moment = turned({{l.moment_x, l.moment_y}}, -turn);
+  l.moment_x = moment[0];
+  l.moment_y = moment[1];
   return l;
 }
 

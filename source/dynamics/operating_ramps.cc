@@ -131,13 +131,6 @@ void OperatingRamps::validate() const
   inner_pressure.validate("Inner pressure");
 }
 
-double OperatingRamps::last_change() const
-{
-  double t = 0;
-  for (const Ramp *r : {&speed, &outer_pressure, &inner_pressure})
-    t = std::max(t, r->t3 < 1e100 ? r->t3 : r->t2);
-  return t;
-}
 std::vector<double> OperatingRamps::corners() const
 {
   std::vector<double> c;

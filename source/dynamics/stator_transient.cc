@@ -84,10 +84,7 @@ void RotorRunout::parse_parameters(dealii::ParameterHandler &prm)
 
 std::array<double, 2> RotorRunout::vector(const double shaft_angle) const
 {
-  // film_thickness.h: the film is thickest at psi with tilt_x = gamma sin psi, tilt_y = -gamma cos
-  // psi
-  const double psi = shaft_angle + phase;
-  return {{tilt * std::sin(psi), -tilt * std::cos(psi)}};
+  return tilt_vector(tilt, shaft_angle + phase);
 }
 
 void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
@@ -120,8 +117,8 @@ void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Order", "2", Integer(1, 5),
                     "Largest order of IDA's variable-order BDF. 2: BDF1-2 are A-stable; at orders "
                     "3-5 the film's lightly damped half-frequency whirl (eigenvalues near the "
-                    "imaginary axis) made the step size erratic (up to 60 times more steps, "
-                    "doc/transient.md).");
+                    "imaginary axis) made the step size erratic (order 5: 93-9809 steps for "
+                    "the 9-s cycle, not monotone in the tolerance; doc/transient.md).");
   prm.declare_entry("Frame", "auto", Selection("auto|inertial|rotating"),
                     "Frame of the stator-tilt state. rotating: turns with the shaft, so a "
                     "steady whirl under rotor runout is a constant state and the integrator "
@@ -243,16 +240,6 @@ struct StatorTransient::Evaluation
   double shaft_angle;
 };
 
-namespace
-{
-/// v turned by the angle a (counter-clockwise, the sense of the shaft's rotation).
-std::array<double, 2> turned(const std::array<double, 2> &v, const double a)
-{
-  const double c = std::cos(a), s = std::sin(a);
-  return {{c * v[0] - s * v[1], s * v[0] + c * v[1]}};
-}
-} // namespace
-
 StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForceModel &film,
                                  const TransientSettings &settings)
     : seal(seal), film(film), settings(settings)
@@ -316,15 +303,13 @@ State StatorTransient::rate(const double t, const State &y) const
   const StatorRing &ring = seal.stator;
   const double omega = e.state.rotor_speed, omega_rate = seal.ramps.speed.rate(t);
   // the stator's initial misalignment g is fixed in space
-  std::array<double, 2> g = {{ring.initial_misalignment * std::sin(ring.misalignment_angle),
-                              -ring.initial_misalignment * std::cos(ring.misalignment_angle)}};
+  std::array<double, 2> g = tilt_vector(ring.initial_misalignment, ring.misalignment_angle);
   if (rotating)
     g = turned(g, -e.shaft_angle);
   // stator tilt a_s = a + a_r and its inertial rate (the support damps that)
   const std::array<double, 2> r = rotor_tilt(e.shaft_angle);
   const double ax = y[2] + r[0], ay = y[3] + r[1];
-  const double vx = rotating ? e.state.tilt_rate_x - omega * r[1] : y[4] - omega * r[1];
-  const double vy = rotating ? e.state.tilt_rate_y + omega * r[0] : y[5] + omega * r[0];
+  const double vx = e.state.tilt_rate_x - omega * r[1], vy = e.state.tilt_rate_y + omega * r[0];
   State d{};
   d[0] = y[1];
   d[1] = (e.film.force_z + e.contact.force - e.closing_force - ring.axial_stiffness * y[0] -
@@ -368,8 +353,9 @@ State StatorTransient::initial_state() const
   const auto r = seal.runout.vector(0);
   const double omega = seal.ramps.speed.value(0);
   y[0] = settings.initial_axial_offset * seal.geometry.clearance;
-  y[2] = settings.initial_tilt * std::sin(settings.initial_tilt_angle);
-  y[3] = -settings.initial_tilt * std::cos(settings.initial_tilt_angle);
+  const auto a0 = tilt_vector(settings.initial_tilt, settings.initial_tilt_angle);
+  y[2] = a0[0];
+  y[3] = a0[1];
   const double bx = rotating ? y[2] + r[0] : r[0], by = rotating ? y[3] + r[1] : r[1];
   y[4] = omega * by;
   y[5] = -omega * bx;

@@ -19,7 +19,6 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
-#include <memory>
 #include <sstream>
 
 namespace sealfe

@@ -1,6 +1,7 @@
 #include <sealfe/film/film_force_model.h>
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 namespace sealfe
@@ -69,6 +70,29 @@ OperatingConditions FilmState::apply(OperatingConditions base) const
   base.inner_pressure = inner_pressure;
   base.outer_pressure = outer_pressure;
   return base;
+}
+
+FilmState FilmState::turned(const double angle) const
+{
+  FilmState s = *this;
+  const auto tilt = sealfe::turned({{tilt_x, tilt_y}}, angle);
+  const auto rate = sealfe::turned({{tilt_rate_x, tilt_rate_y}}, angle);
+  s.tilt_x = tilt[0];
+  s.tilt_y = tilt[1];
+  s.tilt_rate_x = rate[0];
+  s.tilt_rate_y = rate[1];
+  return s;
+}
+
+std::array<double, 2> turned(const std::array<double, 2> &v, const double angle)
+{
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {{c * v[0] - s * v[1], s * v[0] + c * v[1]}};
+}
+
+std::array<double, 2> tilt_vector(const double magnitude, const double angle)
+{
+  return {{magnitude * std::sin(angle), -magnitude * std::cos(angle)}};
 }
 
 FilmCoefficients central_difference_coefficients(const FilmForceModel &film, const FilmState &state,

@@ -31,16 +31,12 @@ public:
   /// linearisation about the axisymmetric equilibrium at clearance C0).
   FilmCoefficients coefficients(const FilmState &state) const override;
 
-  /// Number of loads() calls so far (the cost measure of a transient).
-  unsigned long evaluations() const { return n_evaluations; }
-
 private:
   FilmThickness geometry;
   OperatingConditions operating;
   NarrowSealQuadrature quadrature;
   Cavitation cavitation;
   double cavitation_pressure;
-  mutable unsigned long n_evaluations = 0;
 };
 
 } // namespace sealfe

@@ -45,8 +45,6 @@ struct OperatingRamps
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
   void validate() const;
-  /// The last time at which anything changes (max t3 that is finite, else max t2).
-  double last_change() const;
   /// Every corner of the three ramps, sorted, without repeats: the integrator stops there so
   /// that no step straddles a jump of the slope.
   std::vector<double> corners() const;

@@ -8,6 +8,7 @@
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
 
+#include <array>
 #include <string>
 
 namespace sealfe
@@ -54,7 +55,19 @@ struct FilmState
   FilmThickness apply(FilmThickness base) const;
   /// `base` with this state's speeds and pressures written into it.
   OperatingConditions apply(OperatingConditions base) const;
+  /// The state of the face pair turned about the axis by `angle` (tilt and tilt rate turned).
+  FilmState turned(double angle) const;
 };
+
+/// The tilt, tilt-rate or moment vector (x, y) turned about the axis by `angle` (rad,
+/// counter-clockwise: the sense of the shaft). An axisymmetric seal turned as a whole turns its
+/// moments with its tilt.
+std::array<double, 2> turned(const std::array<double, 2> &v, double angle);
+
+/// The tilt vector (tilt_x, tilt_y) of a tilt `magnitude` whose film is thickest at `angle`
+/// (film_thickness.h: tilt_x = gamma sin psi, tilt_y = -gamma cos psi; the inverse of
+/// FilmThickness::set_tilt_vector).
+std::array<double, 2> tilt_vector(double magnitude, double angle);
 
 /// The film seen by the ring dynamics. An implementation is built for one seal (geometry beyond
 /// the state, fluid, roughness, discretisation) and may keep caches, factorisations or meshes
