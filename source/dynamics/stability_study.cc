@@ -221,7 +221,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     out << "# stable range of the " << (swept_rotor ? "rotor" : "stator")
         << " speed (rad/s) against " << second
         << " (SI); range = the stable interval containing the operating speed, else the widest; "
-           "nan = no stable speed in the sweep\n";
+           "empty = no stable speed in the sweep\n";
     out << "value,stable_low,stable_high,low_at_search_limit,high_at_search_limit,"
            "stable_intervals\n";
     out.precision(10);
@@ -248,8 +248,15 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       bool ok = false;
       nlohmann::json lim;
       const nlohmann::json range = pick_range(iv, c, ok, lim);
-      out << v << "," << (ok ? range[0].get<double>() : NAN) << ","
-          << (ok ? range[1].get<double>() : NAN) << "," << (ok ? int(lim[0].get<bool>()) : 0) << ","
+      auto bound = [&](const int k)
+      {
+        std::ostringstream b;
+        b.precision(10);
+        if (ok)
+          b << range[k].get<double>();
+        return b.str();
+      };
+      out << v << "," << bound(0) << "," << bound(1) << "," << (ok ? int(lim[0].get<bool>()) : 0) << ","
           << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
       table.push_back({{"value", v}, {"stable_range", range}});
     }
