@@ -116,9 +116,7 @@ void print_parameters(const ParameterHandler &prm, std::ostream &out)
 class CoutRedirect
 {
 public:
-  explicit CoutRedirect(std::ostringstream &buffer)
-    : console(std::cout.rdbuf(buffer.rdbuf()))
-  {}
+  explicit CoutRedirect(std::ostringstream &buffer) : console(std::cout.rdbuf(buffer.rdbuf())) {}
   ~CoutRedirect() { std::cout.rdbuf(console); }
   CoutRedirect(const CoutRedirect &) = delete;
   CoutRedirect &operator=(const CoutRedirect &) = delete;
@@ -201,6 +199,8 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
     if (args.size() == 2)
     {
       const std::string &file = args[1];
+      if (std::filesystem::is_directory(file))
+        throw std::runtime_error("parameter file '" + file + "' is a directory");
       std::ifstream probe(file);
       if (!probe)
         throw std::runtime_error("parameter file '" + file + "' is missing or unreadable");
@@ -210,7 +210,12 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       }
       catch (std::exception &e)
       {
-        throw std::runtime_error("parameter file '" + file + "': " + one_line(e));
+        // deal.II writes "Line <2> of file <case.prm: ..." for a subsection: close the bracket
+        std::string message = one_line(e);
+        const std::string open = "of file <" + file + ":";
+        if (const auto at = message.find(open); at != std::string::npos)
+          message.replace(at, open.size(), "of file <" + file + ">:");
+        throw std::runtime_error("parameter file '" + file + "': " + message);
       }
     }
     const std::string directory = prm.get("Output directory");

@@ -1,5 +1,6 @@
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/film/film_summary.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
 #include <array>
@@ -66,7 +67,7 @@ void CoefficientSettings::parse_parameters(ParameterHandler &prm)
   check(tilt_step, "Tilt step", true);
   if (relative_step >= 0.5)
     throw std::runtime_error("Coefficients: 'Relative step' must be well below 1 (got " +
-                             std::to_string(relative_step) + "); 1e-4 is a good value");
+                             numerics::to_prm_string(relative_step) + "); 1e-4 is a good value");
 }
 
 CoefficientSettings::Steps CoefficientSettings::steps(const FilmThickness &film,

@@ -348,24 +348,25 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
       summary["interpolation"] =
           interpolation == CoefficientTable::Interpolation::linear ? "linear" : "cubic";
       summary["held_out_error"] = held;
+      // no held-out point, no claim: null, not a perfect 0
+      const nlohmann::json none = nullptr;
       summary["max_held_out_error"] = {
-          {"stiffness", worst_k},
-          {"damping", worst_d},
+          {"stiffness", held.empty() ? none : nlohmann::json(worst_k)},
+          {"damping", held.empty() ? none : nlohmann::json(worst_d)},
           {"definition", "max_ij |K~ - K| / max_ij |K| of diag(1, 1/ro, 1/ro) K diag(1, 1/ro, "
                          "1/ro); the same for D"}};
     }
     if (grid_failures < plan.n_grid)
-      std::cerr << "sealfe table: wrote " << output::published_name(directory + "/" + file)
-                << " (" << plan.points.size() << " rows, " << failures.size() << " failed)"
-                << std::endl;
+      std::cerr << "sealfe table: wrote " << output::published_name(directory + "/" + file) << " ("
+                << plan.points.size() << " rows, " << failures.size() << " failed)" << std::endl;
     else
       first_failure = failures.front()["message"].get<std::string>();
   }
   MPI_Bcast(&grid_failures, 1, MPI_UNSIGNED, 0, comm);
   // Nothing is published then: a previous good table stays.
   if (grid_failures == plan.n_grid)
-    throw std::runtime_error("Table: every grid point failed, nothing was written (the first: " +
-                             first_failure + ")");
+    throw std::runtime_error(
+        "Table: every grid point failed, nothing was written (the first: " + first_failure + ")");
   return summary;
 }
 } // namespace table

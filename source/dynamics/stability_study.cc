@@ -237,7 +237,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       catch (const std::runtime_error &e)
       {
         throw std::runtime_error("Stability: Second parameter " + second + " = " +
-                                 std::to_string(v) + ": " + e.what());
+                                 numerics::to_prm_string(v) + ": " + e.what());
       }
       const double f = swept_rotor ? varied.operating.stator_speed : varied.operating.rotor_speed;
       const double c = swept_rotor ? varied.operating.rotor_speed : varied.operating.stator_speed;
@@ -256,8 +256,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
           b << range[k].get<double>();
         return b.str();
       };
-      out << v << "," << bound(0) << "," << bound(1) << "," << (ok ? int(lim[0].get<bool>()) : 0) << ","
-          << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
+      out << v << "," << bound(0) << "," << bound(1) << "," << (ok ? int(lim[0].get<bool>()) : 0)
+          << "," << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
       table.push_back({{"value", v}, {"stable_range", range}});
     }
     summary["second_parameter"] = second;

@@ -16,7 +16,7 @@ namespace
 nlohmann::json load_error_estimate(const FilmSettings &settings, const ReynoldsSolver &solver,
                                    const FilmLoads &loads, MPI_Comm comm, nlohmann::json &timings)
 {
-  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
   const std::string unavailable = error_estimate_unavailable(solver);
   if (!unavailable.empty())
   {
@@ -80,16 +80,15 @@ double mass_balance_flow_scale(const FilmThickness &film, const OperatingConditi
 {
   const double ri = film.inner_radius, ro = film.outer_radius, C0 = film.clearance;
   // Couette flow through a radial line of the dam, (|w_r| + |w_s|)/2 int_ri^ro C0 r dr
-  const double couette = 0.25 * (std::abs(conditions.rotor_speed) +
-                                 std::abs(conditions.stator_speed)) *
+  const double couette = 0.25 *
+                         (std::abs(conditions.rotor_speed) + std::abs(conditions.stator_speed)) *
                          C0 * (ro * ro - ri * ri);
   // radial Poiseuille flow of the flat film of clearance C0 under the supply difference
   const double poiseuille = 2 * M_PI * C0 * C0 * C0 *
                             std::abs(conditions.outer_pressure - conditions.inner_pressure) /
                             (12 * conditions.viscosity * std::log(ro / ri));
-  return std::max({couette, poiseuille, std::abs(loads.squeeze_flow),
-                   std::abs(loads.leakage_inner), std::abs(loads.leakage_outer),
-                   std::numeric_limits<double>::min()});
+  return std::max({couette, poiseuille, std::abs(loads.squeeze_flow), std::abs(loads.leakage_inner),
+                   std::abs(loads.leakage_outer), std::numeric_limits<double>::min()});
 }
 
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
@@ -112,7 +111,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   const nlohmann::json round_off =
       estimate_round_off(settings.geometry, settings.conditions, loads).to_json();
   summary["round_off"] = round_off;
-  if (round_off.contains("warning") && Utilities::MPI::this_mpi_process(comm) == 0)
+  if (round_off.contains("warning") && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
     std::cerr << "sealfe: warning: " << round_off["warning"].get<std::string>() << std::endl;
   const char *names[] = {"none", "half-sommerfeld", "reynolds", "jfo"};
   summary["cavitation"] = {{"model", names[static_cast<int>(solver.cavitation.model)]},

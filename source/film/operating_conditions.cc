@@ -18,20 +18,23 @@ void OperatingConditions::declare_parameters(dealii::ParameterHandler &prm)
   const double max_viscosity = 1e6; // Pa s: above pitch-like polymer melts
   const double max_speed = 1e6;     // rad/s: a 1 cm face would move at 10 km/s
   prm.enter_subsection("Operating conditions");
-  prm.declare_entry("Inner pressure", numerics::to_prm_string(defaults.inner_pressure), Double(-max_pressure, max_pressure),
-                    "Pressure pi (Pa) on r = ri.");
-  prm.declare_entry("Outer pressure", numerics::to_prm_string(defaults.outer_pressure), Double(-max_pressure, max_pressure),
-                    "Pressure po (Pa) on r = ro.");
-  prm.declare_entry("Viscosity", numerics::to_prm_string(defaults.viscosity), Double(lowest, max_viscosity),
-                    "Dynamic viscosity mu (Pa s).");
-  prm.declare_entry("Rotor speed", numerics::to_prm_string(defaults.rotor_speed), Double(-max_speed, max_speed),
+  prm.declare_entry("Inner pressure", numerics::to_prm_string(defaults.inner_pressure),
+                    Double(-max_pressure, max_pressure), "Pressure pi (Pa) on r = ri.");
+  prm.declare_entry("Outer pressure", numerics::to_prm_string(defaults.outer_pressure),
+                    Double(-max_pressure, max_pressure), "Pressure po (Pa) on r = ro.");
+  prm.declare_entry("Viscosity", numerics::to_prm_string(defaults.viscosity),
+                    Double(lowest, max_viscosity), "Dynamic viscosity mu (Pa s).");
+  prm.declare_entry("Rotor speed", numerics::to_prm_string(defaults.rotor_speed),
+                    Double(-max_speed, max_speed),
                     "Angular speed (rad/s, positive in +theta) of the rotor face; the film shape "
                     "is fixed in the frame of the solve.");
-  prm.declare_entry("Stator speed", numerics::to_prm_string(defaults.stator_speed), Double(-max_speed, max_speed),
+  prm.declare_entry("Stator speed", numerics::to_prm_string(defaults.stator_speed),
+                    Double(-max_speed, max_speed),
                     "Angular speed (rad/s) of the other face (non-zero for two rotating rings, "
                     "FMRR).");
   prm.declare_entry("Reference pressure", numerics::to_prm_string(defaults.reference_pressure),
-                    Double(-max_pressure, max_pressure), "p_ref (Pa) subtracted from the pressure in the force and moments.");
+                    Double(-max_pressure, max_pressure),
+                    "p_ref (Pa) subtracted from the pressure in the force and moments.");
   prm.leave_subsection();
 }
 

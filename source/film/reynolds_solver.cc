@@ -438,6 +438,12 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   // (h is the distance between the mean planes, Green (2002) Eq. 24; it may be <= 0).
   film.validate(contact.enabled() && !flow_factors.is_smooth());
   conditions.validate();
+  if (coarsening == 0) // before anything is allocated
+  {
+    settings.mesh.check_memory(settings.polynomial_degree);
+    if (film.wave_amplitude != 0)
+      settings.mesh.check_resolves_waves(film.wave_number, settings.polynomial_degree);
+  }
   flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
   timer.reset();

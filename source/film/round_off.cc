@@ -21,11 +21,16 @@ RoundOffEstimate estimate_round_off(const FilmThickness &film,
   RoundOffEstimate e;
   e.viscous_pressure = 6 * mu * speed * ro * width / (h * h) +
                        12 * mu * squeeze_velocity * width * width / (h * h * h);
-  e.pressure_range = std::max({std::abs(conditions.outer_pressure - conditions.inner_pressure),
-                               loads.max_pressure - loads.min_pressure,
-                               std::numeric_limits<double>::min()});
-  e.relative_error =
-      std::numeric_limits<double>::epsilon() * e.viscous_pressure / e.pressure_range;
+  e.supply_pressure =
+      std::max({std::abs(conditions.outer_pressure - conditions.inner_pressure),
+                std::abs(conditions.inner_pressure - conditions.reference_pressure),
+                std::abs(conditions.outer_pressure - conditions.reference_pressure)});
+  // Not max p - min p when there is a supply pressure: at collapse that range is itself round-off
+  // and would hide it (the estimate would saturate near 0.1).
+  e.pressure_range = e.supply_pressure > 0 ? e.supply_pressure
+                                           : std::max(loads.max_pressure - loads.min_pressure,
+                                                      std::numeric_limits<double>::min());
+  e.relative_error = std::numeric_limits<double>::epsilon() * e.viscous_pressure / e.pressure_range;
   return e;
 }
 
@@ -34,8 +39,9 @@ nlohmann::json RoundOffEstimate::to_json() const
   nlohmann::json j = {{"relative_error", relative_error},
                       {"viscous_pressure", viscous_pressure},
                       {"pressure_range", pressure_range},
-                      {"definition", "eps * viscous pressure scale / pressure range: the relative "
-                                     "pressure error double precision can leave (doc/guarantees.md)"}};
+                      {"definition",
+                       "eps * viscous pressure scale / pressure range: the relative "
+                       "pressure error double precision can leave (doc/guarantees.md)"}};
   if (relative_error > warn_above)
   {
     std::ostringstream s;
@@ -50,7 +56,9 @@ nlohmann::json RoundOffEstimate::to_json() const
 
 void refuse_round_off_collapse(const RoundOffEstimate &e)
 {
-  if (!(e.relative_error > RoundOffEstimate::refuse_above))
+  // Without a supply pressure the pressure range is the film's own (possibly all round-off, as
+  // for a shear-only axisymmetric film whose true pressure is 0): warned, not refused.
+  if (!(e.relative_error > RoundOffEstimate::refuse_above) || !(e.supply_pressure > 0))
     return;
   std::ostringstream s;
   s.precision(3);

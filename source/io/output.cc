@@ -66,7 +66,7 @@ std::pair<std::string, std::string> &current_staging()
 } // namespace
 
 StagedOutput::StagedOutput(const std::string &directory_, const std::string &tag)
-  : directory(directory_)
+    : directory(directory_)
 {
   if (directory.empty())
     throw std::runtime_error("Output directory is empty: name a directory");
@@ -83,8 +83,8 @@ StagedOutput::StagedOutput(const std::string &directory_, const std::string &tag
   {
     if (created_directory)
       fs::remove(directory, ec);
-    throw std::runtime_error("Output directory '" + directory +
-                             "' is not writable: " + (ec ? ec.message() : "cannot create " + staging));
+    throw std::runtime_error("Output directory '" + directory + "' is not writable: " +
+                             (ec ? ec.message() : "cannot create " + staging));
   }
   current_staging() = {staging, directory};
 }

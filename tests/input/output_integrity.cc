@@ -100,9 +100,8 @@ TEST(OutputIntegrity, NonFiniteCoefficientsAreRefused)
 TEST(OutputIntegrity, NonFiniteStabilityIsRefused)
 {
   // k_s = 1e308: every eigenvalue was null and the verdict "stable": false
-  const std::string good = example("stability") +
-                           "subsection Stability\n  set Speed points = 41\n"
-                           "  set Second parameter = none\nend\n";
+  const std::string good = example("stability") + "subsection Stability\n  set Speed points = 41\n"
+                                                  "  set Second parameter = none\nend\n";
   expect_refused_and_untouched("stability", "stability", good,
                                "subsection Seal dynamics\n  subsection Rotor ring\n"
                                "    set Support stiffness = 1e308\n  end\nend\n",
@@ -152,8 +151,7 @@ TEST(OutputIntegrity, ChecksOfTheResults)
   }
   catch (const std::runtime_error &e)
   {
-    EXPECT_NE(std::string(e.what()).find("loads.moments[1] = nan"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("loads.moments[1] = nan"), std::string::npos) << e.what();
   }
   s["loads"]["moments"][1] = 2.0;
   s["none"] = nullptr; // a documented "not applicable" is not a result
@@ -220,4 +218,20 @@ TEST(OutputIntegrity, GoodRunLeavesNoStagingBehind)
   EXPECT_NE(r.out.find("force_z"), std::string::npos);
   const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
   EXPECT_EQ(s.dump().find(".sealfe-partial"), std::string::npos);
+}
+
+TEST(OutputIntegrity, NoHeldOutPointClaimsNoError)
+{
+  // held_out_error: [] beside max_held_out_error: 0.0 claimed a perfect interpolation
+  const fs::path d = sealfe::testing::fresh_directory("sealfe_output_integrity_held_out");
+  const CliResult r =
+      run_sealfe(d, "table",
+                 example("table") + small_mesh +
+                     "subsection Table\n  set Rotor speed = 0, 1000\n"
+                     "  set Clearance = 1e-6, 1.25e-6\n  set Held-out points = 0\nend\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
+  EXPECT_TRUE(s["held_out_error"].empty());
+  EXPECT_TRUE(s["max_held_out_error"]["stiffness"].is_null()) << s["max_held_out_error"];
+  EXPECT_TRUE(s["max_held_out_error"]["damping"].is_null());
 }

@@ -59,13 +59,13 @@ Run solve(const std::string &name, const double mu, const double omega,
           const std::string &more = "")
 {
   const fs::path d = sealfe::testing::fresh_directory("sealfe_round_off_" + name);
-  const auto r = run_sealfe(d, "solve",
-                            "subsection Operating conditions\n  set Viscosity = " +
-                                std::to_string(mu) + "\n  set Rotor speed = " +
-                                std::to_string(omega) +
-                                "\nend\nsubsection Discretization\n  set Error estimate = false\n"
-                                "end\nsubsection Output\n  set Write fields = false\nend\n" +
-                                more);
+  const auto r =
+      run_sealfe(d, "solve",
+                 "subsection Operating conditions\n  set Viscosity = " + std::to_string(mu) +
+                     "\n  set Rotor speed = " + std::to_string(omega) +
+                     "\nend\nsubsection Discretization\n  set Error estimate = false\n"
+                     "end\nsubsection Output\n  set Write fields = false\nend\n" +
+                     more);
   nlohmann::json s;
   if (r.status == 0)
     s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
@@ -100,9 +100,10 @@ TEST(RoundOff, EstimateBoundsTheChangeOfAForceThatDoesNotDependOnViscosity)
 
 TEST(RoundOff, CollapseIsRefusedWithTheReason)
 {
-  // mu = 1e6 Pa s at 1e6 rad/s: the viscous pressure scale is ~1e21 Pa against a 4e5 Pa supply
+  // mu = 1e6 Pa s at 1e6 rad/s: the viscous pressure scale is ~1.6e19 Pa against a 4e4 Pa supply
   // difference; before, the solve exited 0 with a force that was mostly round-off.
-  const Run r = solve("collapse", 1e6, 1e6);
+  const Run r = solve("collapse", 1e6, 1e6,
+                      "subsection Operating conditions\n  set Outer pressure = 4e4\nend\n");
   EXPECT_NE(r.status, 0);
   EXPECT_EQ(r.err.rfind("sealfe: error: round-off collapse", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("viscosity"), std::string::npos) << r.err;
@@ -138,4 +139,51 @@ TEST(MassBalance, WavyJfoExampleBalances)
   ASSERT_EQ(r.status, 0) << r.err;
   const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
   EXPECT_LT(s["mass_balance_residual"].get<double>(), 1e-6);
+}
+
+TEST(ErrorEstimate, FailureOfTheCoarseSolveKeepsTheConvergedResult)
+{
+  // 12 waves of 0.9 C0 under JFO: the fine solve converges, the error-estimate solve on the 2x
+  // coarser mesh does not. It used to end the run with exit 1 and a message that did not say the
+  // failing solve was the estimate's (issue 14, item 8).
+  const std::string body = "subsection Geometry\n  set Coning = 0\n  set Wave amplitude = 0.9e-6\n"
+                           "  set Wave number = 12\nend\n"
+                           "subsection Operating conditions\n  set Inner pressure = 2e4\n"
+                           "  set Outer pressure = 5e4\nend\n"
+                           "subsection Cavitation\n  set Model = jfo\nend\n"
+                           "subsection Output\n  set Write fields = false\nend\n";
+  const fs::path d = sealfe::testing::fresh_directory("sealfe_estimate_failure");
+  const auto r = run_sealfe(d, "solve", body);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("sealfe: warning: no error estimate: the error-estimate solve"),
+            std::string::npos)
+      << r.err;
+  const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
+  EXPECT_FALSE(s["error_estimate"]["available"].get<bool>());
+  EXPECT_NE(s["error_estimate"]["method"].get<std::string>().find("coarser mesh failed"),
+            std::string::npos);
+
+  // the same loads as without the estimate
+  const fs::path d2 = sealfe::testing::fresh_directory("sealfe_estimate_failure_off");
+  const auto r2 = run_sealfe(
+      d2, "solve", body + "subsection Discretization\n  set Error estimate = false\nend\n");
+  ASSERT_EQ(r2.status, 0) << r2.err;
+  const auto s2 = nlohmann::json::parse(read_file(d2 / "out" / "summary.json"));
+  EXPECT_EQ(s["force_z"].get<double>(), s2["force_z"].get<double>());
+}
+
+TEST(ErrorEstimate, AMeshThatCannotBeHalvedSaysSo)
+{
+  // 1 radial cell: the estimate was dropped without a word (issue 14, item 9)
+  const fs::path d = sealfe::testing::fresh_directory("sealfe_estimate_none");
+  const auto r = run_sealfe(d, "solve",
+                            "subsection Discretization\n  set Radial cells = 1\n"
+                            "  set Circumferential cells = 16\nend\n"
+                            "subsection Output\n  set Write fields = false\nend\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("sealfe: warning: no error estimate: the mesh of 1 x 16 cells"),
+            std::string::npos)
+      << r.err;
+  const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
+  EXPECT_FALSE(s["error_estimate"]["available"].get<bool>());
 }
