@@ -5,6 +5,7 @@
 #include "../sealfe_cli.h"
 
 #include <sealfe/io/output.h>
+#include <sealfe/numerics/polynomial.h>
 
 #include <gtest/gtest.h>
 
@@ -234,4 +235,11 @@ TEST(OutputIntegrity, NoHeldOutPointClaimsNoError)
   EXPECT_TRUE(s["held_out_error"].empty());
   EXPECT_TRUE(s["max_held_out_error"]["stiffness"].is_null()) << s["max_held_out_error"];
   EXPECT_TRUE(s["max_held_out_error"]["damping"].is_null());
+}
+
+TEST(OutputIntegrity, NanNeverReachesLapack)
+{
+  // LAPACK's DGEBAL stops the whole program (exit 0, no summary) on a nan in the matrix
+  EXPECT_THROW(sealfe::real_polynomial_roots({1.0, NAN, 1.0}), std::runtime_error);
+  EXPECT_EQ(sealfe::real_polynomial_roots({-1.0, 0.0, 1.0}).size(), 2u);
 }

@@ -48,15 +48,15 @@ double exact_force()
   return 2 * M_PI * force * dr / 3;
 }
 
-struct Run
+struct SolveRun
 {
   int status;
   std::string err;
   nlohmann::json summary;
 };
 
-Run solve(const std::string &name, const double mu, const double omega,
-          const std::string &more = "")
+SolveRun solve(const std::string &name, const double mu, const double omega,
+               const std::string &more = "")
 {
   const fs::path d = sealfe::testing::fresh_directory("sealfe_round_off_" + name);
   const auto r =
@@ -75,7 +75,7 @@ Run solve(const std::string &name, const double mu, const double omega,
 
 TEST(RoundOff, EstimateBoundsTheChangeOfAForceThatDoesNotDependOnViscosity)
 {
-  const Run base = solve("base", 1.2e-3, 1000);
+  const SolveRun base = solve("base", 1.2e-3, 1000);
   ASSERT_EQ(base.status, 0) << base.err;
   const double F0 = base.summary["force_z"].get<double>();
   EXPECT_NEAR(F0, exact_force(), 1e-4 * exact_force()); // discretisation
@@ -84,7 +84,7 @@ TEST(RoundOff, EstimateBoundsTheChangeOfAForceThatDoesNotDependOnViscosity)
 
   for (const double mu : {1e2, 1e4, 1e6})
   {
-    const Run r = solve("mu", mu, 1000);
+    const SolveRun r = solve("mu", mu, 1000);
     ASSERT_EQ(r.status, 0) << r.err;
     const double estimate = r.summary["round_off"]["relative_error"].get<double>();
     const double change = std::abs(r.summary["force_z"].get<double>() - F0) / F0;
@@ -102,8 +102,8 @@ TEST(RoundOff, CollapseIsRefusedWithTheReason)
 {
   // mu = 1e6 Pa s at 1e6 rad/s: the viscous pressure scale is ~1.6e19 Pa against a 4e4 Pa supply
   // difference; before, the solve exited 0 with a force that was mostly round-off.
-  const Run r = solve("collapse", 1e6, 1e6,
-                      "subsection Operating conditions\n  set Outer pressure = 4e4\nend\n");
+  const SolveRun r = solve("collapse", 1e6, 1e6,
+                           "subsection Operating conditions\n  set Outer pressure = 4e4\nend\n");
   EXPECT_NE(r.status, 0);
   EXPECT_EQ(r.err.rfind("sealfe: error: round-off collapse", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("viscosity"), std::string::npos) << r.err;
@@ -113,8 +113,8 @@ TEST(MassBalance, ResidualIsRelativeToAFlowThatDoesNotVanish)
 {
   // pi = po on the coned face: no net flow at all (the Couette flow is circumferential). The
   // residual was the ratio of two round-off values, 0.86.
-  const Run r = solve("balance", 1.2e-3, 1000,
-                      "subsection Operating conditions\n  set Inner pressure = 4e5\nend\n");
+  const SolveRun r = solve("balance", 1.2e-3, 1000,
+                           "subsection Operating conditions\n  set Inner pressure = 4e5\nend\n");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_LT(std::abs(r.summary["leakage_inner"].get<double>()), 1e-20);
   // Couette flow through the dam: (w/2) C0 (ro^2 - ri^2) / 2
