@@ -76,7 +76,12 @@ nlohmann::json run(ParameterHandler &prm, const std::string &, MPI_Comm comm)
   summary["narrow_seal_reference"] =
       narrow_seal_reference(film_settings.geometry, film_settings.conditions);
   if (Utilities::MPI::this_mpi_process(comm) == 0)
+  {
     print_headline(r);
+    if (!r.has_error_estimate && film_settings.estimate_error)
+      std::cerr << "sealfe: warning: no error estimate: " << r.no_error_estimate_reason
+                << std::endl;
+  }
   return summary;
 }
 } // namespace

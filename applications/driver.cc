@@ -7,12 +7,17 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace sealfe::applications
 {
@@ -107,6 +112,43 @@ void print_parameters(const ParameterHandler &prm, std::ostream &out)
   print(json, "");
 }
 
+/// Sends std::cout to a buffer while it exists.
+class CoutRedirect
+{
+public:
+  explicit CoutRedirect(std::ostringstream &buffer) : console(std::cout.rdbuf(buffer.rdbuf())) {}
+  ~CoutRedirect() { std::cout.rdbuf(console); }
+  CoutRedirect(const CoutRedirect &) = delete;
+  CoutRedirect &operator=(const CoutRedirect &) = delete;
+
+private:
+  std::streambuf *console;
+};
+
+/// Nothing non-finite is published: the summary (nlohmann::json writes nan as null) and the data
+/// rows of every staged CSV file.
+void check_results(const nlohmann::json &summary, const std::string &staging)
+{
+  output::check_finite(summary);
+  std::vector<std::string> tables;
+  for (const auto &entry : std::filesystem::directory_iterator(staging))
+    if (entry.path().extension() == ".csv")
+      tables.push_back(entry.path().string());
+  std::sort(tables.begin(), tables.end());
+  for (const std::string &table : tables)
+    output::check_finite_csv(table);
+}
+
+/// File names in the summary name the published files, not the staged ones.
+void publish_paths(nlohmann::json &node)
+{
+  if (node.is_string())
+    node = output::published_name(node.get<std::string>());
+  else if (node.is_structured())
+    for (auto &value : node)
+      publish_paths(value);
+}
+
 void print_usage(std::ostream &out, const std::vector<SubCommand> &commands)
 {
   out << "usage: sealfe <sub-command> [file.prm]\n"
@@ -157,6 +199,8 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
     if (args.size() == 2)
     {
       const std::string &file = args[1];
+      if (std::filesystem::is_directory(file))
+        throw std::runtime_error("parameter file '" + file + "' is a directory");
       std::ifstream probe(file);
       if (!probe)
         throw std::runtime_error("parameter file '" + file + "' is missing or unreadable");
@@ -166,23 +210,60 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       }
       catch (std::exception &e)
       {
-        throw std::runtime_error("parameter file '" + file + "': " + one_line(e));
+        // deal.II writes "Line <2> of file <case.prm: ..." for a subsection: close the bracket
+        std::string message = one_line(e);
+        const std::string open = "of file <" + file + ":";
+        if (const auto at = message.find(open); at != std::string::npos)
+          message.replace(at, open.size(), "of file <" + file + ">:");
+        throw std::runtime_error("parameter file '" + file + "': " + message);
       }
     }
     const std::string directory = prm.get("Output directory");
 
+    // The run writes into a staging directory inside the output directory, made before any work
+    // (so an unwritable directory is refused at once) on rank 0; every rank of a distributed
+    // command learns the outcome, so that no rank waits for one that gave up.
+    std::unique_ptr<output::StagedOutput> staged;
+    std::string staging, staging_error;
+    if (root)
+      try
+      {
+        staged = std::make_unique<output::StagedOutput>(directory, std::to_string(::getpid()));
+        staging = staged->path();
+      }
+      catch (std::exception &e)
+      {
+        staging_error = one_line(e);
+      }
+    if (command.distributed)
+    {
+      staging = Utilities::MPI::broadcast(comm, staging, 0);
+      staging_error = Utilities::MPI::broadcast(comm, staging_error, 0);
+    }
+    if (!staging_error.empty())
+      throw std::runtime_error(staging_error);
+
+    // The headline is held back until the results are checked: a failed run prints only its
+    // error line.
+    std::ostringstream headline;
     nlohmann::json summary;
-    if (command.distributed || root)
-      summary = command.run(prm, directory, comm);
+    {
+      const CoutRedirect redirect(headline);
+      if (command.distributed || root)
+        summary = command.run(prm, staging, comm);
+    }
     if (root)
     {
-      output::make_directory(directory);
       summary["sub_command"] = command.name;
       summary["mpi_ranks"] = Utilities::MPI::n_mpi_processes(comm);
       summary["wall_time"] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      output::write_used_parameters(directory, prm);
-      output::write_summary(directory, summary);
+      check_results(summary, staging);
+      publish_paths(summary);
+      output::write_used_parameters(staging, prm);
+      output::write_summary(staging, summary);
+      staged->publish();
+      std::cout << output::published_name(headline.str());
       std::cout << "sealfe " << command.name << ": wrote " << directory << "/summary.json and "
                 << directory << "/used_parameters.prm\n";
     }

@@ -438,14 +438,17 @@ AnnularResults evaluate(const AnnularSeal &seal)
 void declare_parameters(dealii::ParameterHandler &prm)
 {
   using namespace dealii::Patterns;
+  // Physical bounds (doc/guarantees.md): no annular seal is 100 m across or long, nor has a 1 m
+  // clearance; non-positive values have the messages of validate().
+  const double lowest = Double::min_double_value;
   prm.enter_subsection("Annular seal");
   prm.declare_entry("Geometry type", "stepped", Selection("straight|tapered|stepped"),
                     "Clearance along the axis: straight (constant), tapered (uniform taper from "
                     "the inlet clearance C1 to the outlet clearance C2) or stepped (C1 over the "
                     "inlet length L1, C2 over the rest).");
-  prm.declare_entry("Diameter", "0.076", Double(), "Seal diameter D (m).");
-  prm.declare_entry("Length", "0.043", Double(), "Seal length L (m).");
-  prm.declare_entry("Outlet clearance", "1.3e-4", Double(),
+  prm.declare_entry("Diameter", "0.076", Double(lowest, 100), "Seal diameter D (m).");
+  prm.declare_entry("Length", "0.043", Double(lowest, 100), "Seal length L (m).");
+  prm.declare_entry("Outlet clearance", "1.3e-4", Double(lowest, 1),
                     "Radial clearance C2 (m) at the outlet, the smallest clearance.");
   prm.declare_entry("Inlet clearance", "", Anything(),
                     "Radial clearance C1 (m) at the inlet. Give either this or Clearance ratio "

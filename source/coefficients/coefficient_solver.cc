@@ -1,4 +1,6 @@
 #include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/film/film_summary.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
 #include <array>
@@ -65,7 +67,7 @@ void CoefficientSettings::parse_parameters(ParameterHandler &prm)
   check(tilt_step, "Tilt step", true);
   if (relative_step >= 0.5)
     throw std::runtime_error("Coefficients: 'Relative step' must be well below 1 (got " +
-                             std::to_string(relative_step) + "); 1e-4 is a good value");
+                             numerics::to_prm_string(relative_step) + "); 1e-4 is a good value");
 }
 
 CoefficientSettings::Steps CoefficientSettings::steps(const FilmThickness &film,
@@ -233,11 +235,12 @@ nlohmann::json CoefficientResult::to_json() const
     e["stiffness"] = rows(stiffness_error);
     e["damping"] = rows(damping_error);
     e["method"] = "difference to a 2x coarser mesh / (2^k - 1)";
+    e["available"] = true;
     e["coarse_dofs"] = coarse_dofs;
     j["error_estimate"] = e;
   }
   else
-    j["error_estimate"] = {{"method", "none: disabled or the mesh cannot be coarsened"}};
+    j["error_estimate"] = {{"method", "none: " + no_error_estimate_reason}, {"available", false}};
   j["stage_wall_time"] = {{"solve", solve_time},
                           {"coefficients", coefficient_time},
                           {"error_estimate", error_estimate_time}};
@@ -353,13 +356,25 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
   // The coarse mesh first, so that the solver ends holding the fine solution.
   FilmLoads coarse_loads;
   FilmCoefficients coarse;
-  r.has_error_estimate = solver.error_estimate_enabled() && solver.mesh().can_coarsen(1);
+  r.no_error_estimate_reason = error_estimate_unavailable(solver);
+  r.has_error_estimate = r.no_error_estimate_reason.empty();
   if (r.has_error_estimate)
   {
     const auto start = std::chrono::steady_clock::now();
     double t_solve, t_coefficients;
-    std::tie(coarse_loads, coarse) = compute_on_mesh(film, conditions, 1, t_solve, t_coefficients);
-    r.coarse_dofs = solver.n_dofs();
+    // The estimate's failure does not cost the fine result: it is reported unavailable.
+    try
+    {
+      std::tie(coarse_loads, coarse) =
+          compute_on_mesh(film, conditions, 1, t_solve, t_coefficients);
+      r.coarse_dofs = solver.n_dofs();
+    }
+    catch (std::exception &e)
+    {
+      r.has_error_estimate = false;
+      r.no_error_estimate_reason =
+          std::string("the error-estimate solve on the 2x coarser mesh failed: ") + e.what();
+    }
     r.error_estimate_time = seconds_since(start);
   }
 

@@ -119,15 +119,23 @@ std::string row(const unsigned int i, const SweepPlan &plan, const CoefficientRe
       line += ",nan";
     return line + ",failed: " + coefficient_table_format::sanitize(failure);
   }
+  // A point whose result is not finite is a failed point, not a row of NaNs marked ok.
+  auto finite = [](const double v)
+  {
+    if (!std::isfinite(v))
+      throw std::runtime_error("the result is not a finite number (an input is beyond what the "
+                               "model can represent in double precision)");
+    return number(v);
+  };
   const FilmLoads &l = result->loads;
   for (const double v : {l.force_z, l.moment_x, l.moment_y, l.moment_restoring, l.moment_transverse,
                          l.leakage_inner, l.leakage_outer, l.friction_torque, l.min_film,
                          l.max_pressure, l.min_pressure, l.cavitated_fraction})
-    line += "," + number(v);
+    line += "," + finite(v);
   for (const auto *m : {&result->coefficients.stiffness, &result->coefficients.damping})
     for (const auto &r : *m)
       for (const double v : r)
-        line += "," + number(v);
+        line += "," + finite(v);
   if (with_errors)
     for (const auto *m : {&result->stiffness_error, &result->damping_error})
       for (const auto &r : *m)
@@ -273,6 +281,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   const double max_rank_time = Utilities::MPI::max(my_time, comm);
   nlohmann::json summary;
   unsigned int grid_failures = 0;
+  std::string first_failure;
   if (rank == 0)
   {
     // Rows in point order, whatever rank computed them.
@@ -339,19 +348,25 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
       summary["interpolation"] =
           interpolation == CoefficientTable::Interpolation::linear ? "linear" : "cubic";
       summary["held_out_error"] = held;
+      // no held-out point, no claim: null, not a perfect 0
+      const nlohmann::json none = nullptr;
       summary["max_held_out_error"] = {
-          {"stiffness", worst_k},
-          {"damping", worst_d},
+          {"stiffness", held.empty() ? none : nlohmann::json(worst_k)},
+          {"damping", held.empty() ? none : nlohmann::json(worst_d)},
           {"definition", "max_ij |K~ - K| / max_ij |K| of diag(1, 1/ro, 1/ro) K diag(1, 1/ro, "
                          "1/ro); the same for D"}};
     }
-    std::cerr << "sealfe table: wrote " << directory << "/" << file << " (" << plan.points.size()
-              << " rows, " << failures.size() << " failed)" << std::endl;
+    if (grid_failures < plan.n_grid)
+      std::cerr << "sealfe table: wrote " << output::published_name(directory + "/" + file) << " ("
+                << plan.points.size() << " rows, " << failures.size() << " failed)" << std::endl;
+    else
+      first_failure = failures.front()["message"].get<std::string>();
   }
   MPI_Bcast(&grid_failures, 1, MPI_UNSIGNED, 0, comm);
+  // Nothing is published then: a previous good table stays.
   if (grid_failures == plan.n_grid)
-    throw std::runtime_error("Table: every grid point failed (see the status column of " +
-                             directory + "/" + file + ")");
+    throw std::runtime_error(
+        "Table: every grid point failed, nothing was written (the first: " + first_failure + ")");
   return summary;
 }
 } // namespace table

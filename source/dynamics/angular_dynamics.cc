@@ -147,6 +147,18 @@ std::vector<cplx> AngularSealDynamics::eigenvalues(const double rotor_speed,
   const unsigned int n = s.mass.m();
   dealii::LAPACKFullMatrix<double> A(2 * n, 2 * n);
   A = s.first_order_matrix();
+  // LAPACK's DGEBAL stops the program (exit 0, nothing written) on a nan: refuse it here
+  for (unsigned int i = 0; i < 2 * n; ++i)
+    for (unsigned int j = 0; j < 2 * n; ++j)
+      if (!std::isfinite(A(i, j)))
+      {
+        std::ostringstream m;
+        m << "Seal dynamics: the equations of motion at rotor speed " << rotor_speed
+          << " rad/s, stator speed " << stator_speed
+          << " rad/s are not finite numbers (a film coefficient or ring property is beyond what "
+             "double precision can represent)";
+        throw std::runtime_error(m.str());
+      }
   A.compute_eigenvalues();
   std::vector<cplx> lambda(2 * n);
   for (unsigned int i = 0; i < 2 * n; ++i)

@@ -20,6 +20,12 @@ std::vector<cplx> solve_dense_complex(const std::vector<std::vector<cplx>> &A,
                                       const std::vector<cplx> &b)
 {
   const unsigned int n = b.size();
+  for (const auto &row : A)
+    for (const cplx &a : row)
+      if (!std::isfinite(a.real()) || !std::isfinite(a.imag()))
+        throw std::runtime_error("Seal dynamics: the dynamic stiffness is not a finite number (an "
+                                 "inertia, stiffness, damping or speed is beyond what double "
+                                 "precision can represent)");
   dealii::LAPACKFullMatrix<cplx> M(n, n);
   for (unsigned int i = 0; i < n; ++i)
     for (unsigned int j = 0; j < n; ++j)

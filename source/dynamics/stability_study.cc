@@ -221,7 +221,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     out << "# stable range of the " << (swept_rotor ? "rotor" : "stator")
         << " speed (rad/s) against " << second
         << " (SI); range = the stable interval containing the operating speed, else the widest; "
-           "nan = no stable speed in the sweep\n";
+           "empty = no stable speed in the sweep\n";
     out << "value,stable_low,stable_high,low_at_search_limit,high_at_search_limit,"
            "stable_intervals\n";
     out.precision(10);
@@ -237,7 +237,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       catch (const std::runtime_error &e)
       {
         throw std::runtime_error("Stability: Second parameter " + second + " = " +
-                                 std::to_string(v) + ": " + e.what());
+                                 numerics::to_prm_string(v) + ": " + e.what());
       }
       const double f = swept_rotor ? varied.operating.stator_speed : varied.operating.rotor_speed;
       const double c = swept_rotor ? varied.operating.rotor_speed : varied.operating.stator_speed;
@@ -248,9 +248,16 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       bool ok = false;
       nlohmann::json lim;
       const nlohmann::json range = pick_range(iv, c, ok, lim);
-      out << v << "," << (ok ? range[0].get<double>() : NAN) << ","
-          << (ok ? range[1].get<double>() : NAN) << "," << (ok ? int(lim[0].get<bool>()) : 0) << ","
-          << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
+      auto bound = [&](const int k)
+      {
+        std::ostringstream b;
+        b.precision(10);
+        if (ok)
+          b << range[k].get<double>();
+        return b.str();
+      };
+      out << v << "," << bound(0) << "," << bound(1) << "," << (ok ? int(lim[0].get<bool>()) : 0)
+          << "," << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
       table.push_back({{"value", v}, {"stable_range", range}});
     }
     summary["second_parameter"] = second;

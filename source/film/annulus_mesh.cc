@@ -5,10 +5,13 @@
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace sealfe
 {
@@ -43,6 +46,47 @@ void AnnulusMesh::parse_parameters(ParameterHandler &prm)
   mesh_file = prm.get("Mesh file");
   radial_grading = prm.get_bool("Radial grading");
   prm.leave_subsection();
+}
+
+void AnnulusMesh::check_resolves_waves(const double wave_number, const unsigned int degree) const
+{
+  if (!mesh_file.empty() || wave_number <= 0)
+    return;
+  const double cells =
+      double(circumferential_cells) * double(1u << std::min(global_refinements, 20u));
+  const double nodes_per_wave = cells * degree / wave_number;
+  if (nodes_per_wave < 4)
+  {
+    std::ostringstream s;
+    s << "Discretization: " << cells << " circumferential cells of degree " << degree << " give "
+      << nodes_per_wave << " nodes per wave for Wave number = " << wave_number
+      << "; at least 4 are needed to resolve the waviness (raise Circumferential cells to "
+      << std::ceil(4 * wave_number / degree) << " or more)";
+    throw std::runtime_error(s.str());
+  }
+}
+
+void AnnulusMesh::check_memory(const unsigned int degree) const
+{
+  if (!mesh_file.empty())
+    return;
+  const double cells = double(radial_cells) * double(circumferential_cells) *
+                       std::pow(4.0, double(global_refinements));
+  const double dofs = cells * degree * degree;
+  const double stencil = (2.0 * degree + 1) * (2.0 * degree + 1);
+  // matrix and graph (12 bytes a nonzero), the factorisation or AMG hierarchy and copies (x4),
+  // about 30 vectors of 8 bytes
+  const double bytes = dofs * (stencil * 12 * 4 + 30 * 8);
+  const double machine = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
+  if (machine > 0 && bytes > machine)
+  {
+    std::ostringstream s;
+    s.precision(3);
+    s << "Discretization: " << cells << " cells of degree " << degree << " (" << dofs
+      << " unknowns) would need about " << bytes / 1e9 << " GB of memory; this machine has "
+      << machine / 1e9 << " GB (lower Radial cells, Circumferential cells or Global refinements)";
+    throw std::runtime_error(s.str());
+  }
 }
 
 bool AnnulusMesh::can_coarsen(const unsigned int coarsening) const

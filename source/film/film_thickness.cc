@@ -3,6 +3,7 @@
 #include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,36 +13,50 @@ void FilmThickness::declare_parameters(dealii::ParameterHandler &prm)
 {
   using dealii::Patterns::Double;
   const FilmThickness defaults; // the member initialisers are the defaults
+  // Physical bounds (doc/guarantees.md): beyond them no face seal exists and the film equation
+  // overflows or loses every digit in double precision. Non-positive values that have a message
+  // of their own in validate() are left to it.
+  const double lowest = Double::min_double_value;
+  const double max_radius = 10;    // m
+  const double max_film = 1e-2;    // m: a film of 1 cm is no thin film
+  const double max_angle = 1;      // rad
+  const double max_velocity = 1e3; // m/s, axial squeeze velocity
+  const double max_rate = 1e6;     // rad/s, tilt rates
   prm.enter_subsection("Geometry");
-  prm.declare_entry("Inner radius", numerics::to_prm_string(defaults.inner_radius), Double(0),
-                    "Inner radius ri of the sealing dam (m).");
-  prm.declare_entry("Outer radius", numerics::to_prm_string(defaults.outer_radius), Double(0),
-                    "Outer radius ro of the sealing dam (m).");
-  prm.declare_entry("Clearance", numerics::to_prm_string(defaults.clearance), Double(),
+  prm.declare_entry("Inner radius", numerics::to_prm_string(defaults.inner_radius),
+                    Double(0, max_radius), "Inner radius ri of the sealing dam (m).");
+  prm.declare_entry("Outer radius", numerics::to_prm_string(defaults.outer_radius),
+                    Double(0, max_radius), "Outer radius ro of the sealing dam (m).");
+  prm.declare_entry("Clearance", numerics::to_prm_string(defaults.clearance),
+                    Double(lowest, max_film),
                     "Centreline clearance C0 (m): the film at r = ri on the tilt's neutral line.");
-  prm.declare_entry("Coning", numerics::to_prm_string(defaults.coning), Double(),
+  prm.declare_entry("Coning", numerics::to_prm_string(defaults.coning),
+                    Double(-max_angle, max_angle),
                     "Coning beta (rad): h grows by beta*(r - ri); positive opens outward.");
-  prm.declare_entry("Tilt", numerics::to_prm_string(defaults.tilt), Double(0),
+  prm.declare_entry("Tilt", numerics::to_prm_string(defaults.tilt), Double(0, max_angle),
                     "Relative tilt gamma of the faces (rad).");
   prm.declare_entry("Tilt angle", numerics::to_prm_string(defaults.tilt_angle), Double(),
                     "Angle psi (rad) at which the tilt makes the film thickest.");
-  prm.declare_entry("Wave amplitude", numerics::to_prm_string(defaults.wave_amplitude), Double(),
-                    "Circumferential waviness amplitude A_w (m).");
+  prm.declare_entry("Wave amplitude", numerics::to_prm_string(defaults.wave_amplitude),
+                    Double(-max_film, max_film), "Circumferential waviness amplitude A_w (m).");
   prm.declare_entry("Wave number", numerics::to_prm_string(defaults.wave_number), Double(0),
                     "Number of waves n_w per revolution.");
   prm.declare_entry("Wave phase", numerics::to_prm_string(defaults.wave_phase), Double(),
                     "Angle theta_w (rad) of a waviness crest: A_w cos(n_w (theta - theta_w)).");
   prm.declare_entry(
-      "Axial offset", numerics::to_prm_string(defaults.axial_offset), Double(),
+      "Axial offset", numerics::to_prm_string(defaults.axial_offset), Double(-max_film, max_film),
       "Axial displacement z (m) of the flexible ring from the set point (adds to h).");
   prm.leave_subsection();
 
   prm.enter_subsection("Squeeze motion");
-  prm.declare_entry("Axial velocity", numerics::to_prm_string(defaults.axial_velocity), Double(),
+  prm.declare_entry("Axial velocity", numerics::to_prm_string(defaults.axial_velocity),
+                    Double(-max_velocity, max_velocity),
                     "Axial velocity dz/dt (m/s) of the flexible ring (opens the film if > 0).");
-  prm.declare_entry("Tilt rate x", numerics::to_prm_string(defaults.tilt_rate_x), Double(),
+  prm.declare_entry("Tilt rate x", numerics::to_prm_string(defaults.tilt_rate_x),
+                    Double(-max_rate, max_rate),
                     "Rate (rad/s) of the flexible ring's tilt about the x axis (w = tilt_x y).");
-  prm.declare_entry("Tilt rate y", numerics::to_prm_string(defaults.tilt_rate_y), Double(),
+  prm.declare_entry("Tilt rate y", numerics::to_prm_string(defaults.tilt_rate_y),
+                    Double(-max_rate, max_rate),
                     "Rate (rad/s) of the flexible ring's tilt about the y axis (w = -tilt_y x).");
   prm.leave_subsection();
 }
@@ -127,7 +142,8 @@ void FilmThickness::validate(const bool allow_touch_down) const
     if (!std::isfinite(v))
       fail("Geometry: a parameter is not a finite number");
   if (!(inner_radius > 0))
-    fail("Geometry: Inner radius must be positive (got " + std::to_string(inner_radius) + " m)");
+    fail("Geometry: Inner radius must be positive (got " + numerics::to_prm_string(inner_radius) +
+         " m)");
   if (!(outer_radius > inner_radius))
   {
     std::ostringstream s;
@@ -141,11 +157,18 @@ void FilmThickness::validate(const bool allow_touch_down) const
     s << "Geometry: Clearance must be positive (got " << clearance << " m)";
     fail(s.str());
   }
+  if (wave_amplitude != 0 && wave_number != std::round(wave_number))
+  {
+    std::ostringstream s;
+    s << "Geometry: Wave number must be a whole number of waves per revolution (got " << wave_number
+      << "): otherwise the film jumps at theta = 0";
+    fail(s.str());
+  }
   const Extremum m = minimum();
   if (!(m.value > 0) && !allow_touch_down)
   {
     std::ostringstream s;
-    s << "Geometry: the film touches down: h = " << m.value << " m (overlap " << -m.value
+    s << "Geometry: the film touches down: h = " << m.value << " m (overlap " << 0.0 - m.value
       << " m) at r = " << m.r << " m, theta = " << m.theta
       << " rad; reduce tilt/waviness or raise the clearance (or model rough faces in contact: "
          "Roughness/Model = patir-cheng with Contact/Model = gw-ceb)";

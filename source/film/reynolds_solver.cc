@@ -2,6 +2,7 @@
 #include <sealfe/film/jfo_solver.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
+#include <sealfe/film/round_off.h>
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi_remote_point_evaluation.h>
@@ -411,6 +412,12 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   // (h is the distance between the mean planes, Green (2002) Eq. 24; it may be <= 0).
   film.validate(contact.enabled() && !flow_factors.is_smooth());
   conditions.validate();
+  if (coarsening == 0) // before anything is allocated
+  {
+    settings.mesh.check_memory(settings.polynomial_degree);
+    if (film.wave_amplitude != 0)
+      settings.mesh.check_resolves_waves(film.wave_number, settings.polynomial_degree);
+  }
   flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
   timer.reset();
@@ -426,7 +433,10 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   locally_relevant_void.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
   if (cavitation.is_nonlinear())
     solve_cavitation();
-  return compute_loads();
+  const FilmLoads loads = compute_loads();
+  // at extreme bearing numbers the viscous terms cancel to round-off (doc/guarantees.md)
+  refuse_round_off_collapse(estimate_round_off(film, conditions, loads));
+  return loads;
 }
 
 std::map<std::string, double> ReynoldsSolver::stage_times() const

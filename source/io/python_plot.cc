@@ -1,3 +1,4 @@
+#include <sealfe/io/output.h>
 #include <sealfe/io/python_plot.h>
 
 #include <cstdlib>
@@ -55,7 +56,8 @@ PlotResult run_plot_script(const std::string &script_name,
   std::string args;
   for (const std::string &a : arguments)
     args += " " + quoted(a);
-  result.command = "python3 " + quoted(path.empty() ? "scripts/" + script_name : path) + args;
+  result.command = output::published_name(
+      "python3 " + quoted(path.empty() ? "scripts/" + script_name : path) + args);
   if (path.empty() || !is_file(path))
   {
     result.note = "plot skipped: " + (path.empty() ? "scripts/" + script_name : path) +
@@ -70,8 +72,10 @@ PlotResult run_plot_script(const std::string &script_name,
     const std::string probe = quoted(py) + " -c 'import matplotlib' > /dev/null 2>&1";
     if (std::system(probe.c_str()) != 0)
       continue;
-    result.command = quoted(py) + " " + quoted(path) + args;
-    const std::string cmd = result.command + " > /dev/null 2>&1";
+    const std::string command = quoted(py) + " " + quoted(path) + args;
+    // the files are staged while the run is in progress: the user reruns it on the published ones
+    result.command = output::published_name(command);
+    const std::string cmd = command + " > /dev/null 2>&1";
     if (std::system(cmd.c_str()) == 0 && is_file(png))
     {
       result.made = true;

@@ -52,8 +52,11 @@ std::vector<double> parse_number_list(const std::string &text, const std::string
     if (parts.size() != 3)
       fail("is not a range start : stop : count");
     const double start = number(parts[0]), stop = number(parts[1]), count = number(parts[2]);
-    if (count < 1 || count != std::floor(count) || count > 100000)
+    if (count < 1 || count != std::floor(count))
       fail("needs a whole count of at least 1");
+    if (count > 100000)
+      fail("has a count of " + to_prm_string(count) +
+           ", more than the 100000 points a list may have");
     if (count == 1 && start != stop)
       fail("has count 1 but start != stop");
     const unsigned int n = static_cast<unsigned int>(count);
@@ -72,7 +75,7 @@ std::vector<double> parse_number_list(const std::string &text, const std::string
   std::sort(values.begin(), values.end());
   for (unsigned int i = 1; i < values.size(); ++i)
     if (values[i] == values[i - 1])
-      fail("repeats the value " + std::to_string(values[i]));
+      fail("repeats the value " + to_prm_string(values[i]));
   return values;
 }
 

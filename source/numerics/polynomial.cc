@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <complex>
+#include <stdexcept>
 
 namespace sealfe
 {
@@ -22,6 +23,9 @@ std::vector<double> real_polynomial_roots(std::vector<double> p)
     if (i > 0)
       C(i, i - 1) = 1;
   }
+  for (const double c : p)
+    if (!std::isfinite(c)) // LAPACK would stop the program on a nan
+      throw std::runtime_error("polynomial roots: a coefficient is not a finite number");
   C.compute_eigenvalues();
   for (int i = 0; i < n; ++i)
   {

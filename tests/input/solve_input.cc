@@ -144,3 +144,61 @@ TEST(SolveInput, BadRunDoesNotOverwriteGoodResult)
   EXPECT_NE(r.status, 0);
   EXPECT_EQ(fs::last_write_time(d / "out" / "summary.json"), stamp);
 }
+
+TEST(SolveInput, NonIntegerWaveNumber)
+{
+  // 2.5 waves: the film would jump at theta = 0 (issue 14, item 14)
+  const fs::path d = work_dir();
+  expect_refused(d,
+                 run_case(d, "subsection Geometry\n  set Wave amplitude = 1e-7\n"
+                             "  set Wave number = 2.5\nend\n"),
+                 "Wave number must be a whole number");
+}
+
+TEST(SolveInput, MoreWavesThanTheMeshResolves)
+{
+  // 1e4 waves on 128 cells of degree 2: 0.0256 nodes per wave
+  const fs::path d = work_dir();
+  expect_refused(d,
+                 run_case(d, "subsection Geometry\n  set Wave amplitude = 1e-7\n"
+                             "  set Wave number = 10000\nend\n"),
+                 "nodes per wave");
+}
+
+TEST(SolveInput, ClearMessages)
+{
+  // a directory as parameter file
+  {
+    const fs::path d = work_dir();
+    const std::string cmd = std::string(SEALFE_BINARY) + " solve " + d.string() + " > " +
+                            (d / "stdout").string() + " 2> " + (d / "stderr").string();
+    EXPECT_NE(std::system(cmd.c_str()), 0);
+    std::ifstream e(d / "stderr");
+    std::stringstream s;
+    s << e.rdbuf();
+    EXPECT_NE(s.str().find("is a directory"), std::string::npos) << s.str();
+  }
+  // an unknown subsection: the file name in brackets is closed
+  {
+    const fs::path d = work_dir();
+    const Result r = run_case(d, "subsection Geometri\n  set Inner radius = 0.03\nend\n");
+    EXPECT_NE(r.err.find("case.prm>:"), std::string::npos) << r.err;
+  }
+  // numbers in messages as typed, not in fixed point ("0.000000")
+  {
+    const fs::path d = work_dir();
+    const Result r = run_case(d, "subsection Geometry\n  set Inner radius = 0\nend\n");
+    expect_refused(d, r, "Inner radius must be positive (got 0 m)");
+  }
+}
+
+TEST(SolveInput, MeshBeyondTheMachinesMemory)
+{
+  // Global refinements = 12 ran until killed; Radial cells = 1e9 ended in std::bad_alloc
+  for (const std::string entry : {"Global refinements = 12", "Radial cells = 1000000000"})
+  {
+    const fs::path d = work_dir();
+    expect_refused(d, run_case(d, "subsection Discretization\n  set " + entry + "\nend\n"),
+                   "GB of memory");
+  }
+}

@@ -69,6 +69,7 @@ struct CoefficientResult
   /// the same computation on a mesh twice as coarse, divided by 2^k - 1 (richardson_error, the
   /// same estimate as the loads of `sealfe solve`; why h^k: estimate_load_errors).
   bool has_error_estimate = false;
+  std::string no_error_estimate_reason; ///< why there is none (has_error_estimate false)
   FilmCoefficients::Matrix3 stiffness_error{}, damping_error{};
   FilmLoads load_error;
   dealii::types::global_dof_index coarse_dofs = 0;

@@ -33,6 +33,16 @@ public:
   /// the film is thin and the pressure gradient (~1/h^3) is steep.
   std::vector<double> radial_nodes(const unsigned int nr, const double ri, const double ro) const;
 
+  /// Throws std::runtime_error if the requested built-in mesh (elements of `degree`) has fewer
+  /// than 4 nodes per wave of `wave_number` waves around the circumference: it cannot resolve the
+  /// waviness. Mesh files are not checked.
+  void check_resolves_waves(const double wave_number, const unsigned int degree) const;
+
+  /// Throws std::runtime_error, with the figures, if the requested built-in mesh with elements of
+  /// `degree` would need more memory than the machine has (estimate: 1.5 kB per degree of
+  /// freedom for degree 2, scaled with the stencil (2 degree + 1)^2). Mesh files: not checked.
+  void check_memory(const unsigned int degree) const;
+
   /// True if a mesh `coarsening` levels coarser than the requested one can be built.
   bool can_coarsen(const unsigned int coarsening) const;
 

@@ -19,11 +19,52 @@ void make_directory(const std::string &directory);
 void write_file_atomically(const std::string &directory, const std::string &name,
                            const std::string &text);
 
-/// Remove a previous summary.json so that a failing run cannot be mistaken for a good one
-/// (called only after the inputs were validated and the run is about to overwrite results).
+/// summary.json (written atomically; check_finite first, as nlohmann::json writes nan as null).
 void write_summary(const std::string &directory, const nlohmann::json &summary);
 
 /// used_parameters.prm: every entry, with the values used, in ParameterHandler syntax.
 void write_used_parameters(const std::string &directory, const dealii::ParameterHandler &prm);
+
+/// The files of one run, written into a hidden staging directory inside the output directory and
+/// published by renames once the run succeeded and its results were checked (summary.json last):
+/// the output directory holds one complete run or the previous one, never a mixture marked
+/// complete. Creating the staging directory first also checks that the output directory can be
+/// written before any work is done.
+class StagedOutput
+{
+public:
+  /// Creates `directory` if needed and `directory/.sealfe-partial-<tag>`; throws with the reason
+  /// if either cannot be created (a file in the way, no permission, an empty name).
+  StagedOutput(const std::string &directory, const std::string &tag);
+  /// Unless published: removes the staging directory, and the output directory if this run
+  /// created it and it is still empty.
+  ~StagedOutput();
+  StagedOutput(const StagedOutput &) = delete;
+  StagedOutput &operator=(const StagedOutput &) = delete;
+
+  /// Where the run writes its files.
+  const std::string &path() const { return staging; }
+
+  /// Moves every staged file into the output directory: the previous summary.json is removed
+  /// first, then the files are renamed, used_parameters.prm and summary.json last.
+  void publish();
+
+private:
+  std::string directory, staging;
+  bool created_directory = false, published = false;
+};
+
+/// `text` with the staging directory of the run in progress replaced by its output directory:
+/// for messages and summary entries that name files (they are read after publication).
+std::string published_name(const std::string &text);
+
+/// Throws std::runtime_error naming the first non-finite number in `summary` and where it is
+/// (e.g. "force_z = nan"): nlohmann::json would write it as null, a silent wrong answer.
+void check_finite(const nlohmann::json &summary);
+
+/// Throws std::runtime_error naming the first nan or inf in a data row of a CSV file (a row whose
+/// fields include a "failed..." status is a reported failure and exempt, so is an error-estimate
+/// column "err_..." (nan: no estimate); an empty field is a documented missing value).
+void check_finite_csv(const std::string &file);
 } // namespace output
 } // namespace sealfe
