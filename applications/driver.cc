@@ -247,10 +247,21 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
     // error line.
     std::ostringstream headline;
     nlohmann::json summary;
+    std::string incomplete;
     {
       const CoutRedirect redirect(headline);
-      if (command.distributed || root)
-        summary = command.run(prm, staging, comm);
+      try
+      {
+        if (command.distributed || root)
+          summary = command.run(prm, staging, comm);
+      }
+      catch (output::IncompleteRun &e)
+      {
+        // published like a complete run (its summary says complete = false), then reported
+        incomplete = output::published_name(e.what());
+        summary = std::move(e.summary);
+        summary["complete"] = false;
+      }
     }
     if (root)
     {
@@ -263,6 +274,8 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       output::write_used_parameters(staging, prm);
       output::write_summary(staging, summary);
       staged->publish();
+      if (!incomplete.empty())
+        throw std::runtime_error(incomplete);
       std::cout << output::published_name(headline.str());
       std::cout << "sealfe " << command.name << ": wrote " << directory << "/summary.json and "
                 << directory << "/used_parameters.prm\n";

@@ -360,12 +360,11 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   s["files"] = files;
   if (!result.complete)
   {
-    s["sub_command"] = "transient";
-    output::write_summary(dir, s);
-    throw std::runtime_error("transient: " + result.stop_reason +
-                             "; the rows computed so far "
-                             "are in " +
-                             dir + "/transient.csv, summary.json says complete = false");
+    throw output::IncompleteRun("transient: " + result.stop_reason +
+                                    "; the rows computed so far "
+                                    "are in " +
+                                    dir + "/transient.csv, summary.json says complete = false",
+                                s);
   }
   std::cout << "sealfe transient: " << result.samples.size() << " rows, " << result.steps
             << " steps, " << result.film_evaluations << " film evaluations\n";

@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sealfe
 {
@@ -57,6 +59,20 @@ private:
 /// `text` with the staging directory of the run in progress replaced by its output directory:
 /// for messages and summary entries that name files (they are read after publication).
 std::string published_name(const std::string &text);
+
+/// Thrown by a run that stopped part-way but has results worth keeping (the rows of a transient
+/// up to where the integrator gave up, the finished points of a table): the driver publishes the
+/// staged files with `summary` (which says `"complete": false` and why), then reports the error
+/// and exits non-zero.
+class IncompleteRun : public std::runtime_error
+{
+public:
+  IncompleteRun(const std::string &message, nlohmann::json summary)
+      : std::runtime_error(message), summary(std::move(summary))
+  {
+  }
+  nlohmann::json summary;
+};
 
 /// Throws std::runtime_error naming the first non-finite number in `summary` and where it is
 /// (e.g. "force_z = nan"): nlohmann::json would write it as null, a silent wrong answer.
