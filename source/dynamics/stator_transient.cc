@@ -244,6 +244,8 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
                                  const TransientSettings &settings)
     : seal(seal), film(film), settings(settings)
 {
+  // a library caller gets the same refusals as the prm (an end time of -inf once looped forever)
+  settings.validate();
   const double C0 = seal.geometry.clearance, ro = seal.geometry.outer_radius;
   const double rate = 1e3; // 1/s: velocities are scaled as displacements per ms
   scale = {{C0, C0 * rate, C0 / ro, C0 / ro, C0 / ro * rate, C0 / ro * rate, C0 / ro, 1e-9}};
