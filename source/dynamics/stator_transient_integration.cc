@@ -25,13 +25,13 @@ namespace sealfe
 {
 namespace
 {
-using State = std::array<double, 8>;
-constexpr unsigned int n = 8;
+using State = TransientState;
+constexpr unsigned int n = std::tuple_size<TransientState>::value;
 
 /// What IDA's residual needs: the physical rate and the state scaling.
 struct ResidualData
 {
-  const std::array<double, 8> *scale;
+  const TransientState *scale;
   std::function<State(double, const State &)> rate;
   std::string failure;
 };

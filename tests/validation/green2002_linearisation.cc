@@ -167,3 +167,68 @@ TEST(Green2002Linearisation, RunoutTrackingEqualsTheLinearForcedResponse)
       << "transient " << result.samples.back().relative_tilt << " rad, linear " << expected
       << " rad";
 }
+
+// The flexible rotor of Varney & Green 2017 (Eq. 5-6: K_r, D_r, D_omega_r, gyroscopic I_pr omega,
+// dynamic misalignment chi, static misalignment chi_s) under the same stator, no contact: the
+// steady relative misalignment equals the linear forced response of the FMS on a flexible rotor
+// (AngularSealDynamics, Appendix B's solution), and so does the rotor's own tilt.
+TEST(VarneyGreen2017Transient, FlexibleRotorTrackingEqualsTheLinearForcedResponse)
+{
+  FlexibleStatorSeal seal = constant_seal();
+  seal.runout.tilt = 1e-6; // chi_s
+  seal.rotor.flexible = true;
+  seal.rotor.transverse_inertia = 0.2; // Varney & Green 2017 Table 2
+  seal.rotor.polar_inertia = 0.1;
+  seal.rotor.angular_stiffness = 5e5;
+  seal.rotor.angular_damping = 20;
+  seal.rotor.rotating_damping = 1;
+  seal.rotor.dynamic_misalignment = 2e-6; // (I_tr - I_pr) chi omega^2 ~ K_r chi_s at 1500 rad/s
+  const auto film = full_film(seal);
+
+  FilmState s;
+  s.rotor_speed = omega;
+  s.inner_pressure = 1e5;
+  s.outer_pressure = 5e5;
+  s.coning = seal.geometry.coning;
+  s.axial_offset = solve_equilibrium(seal, film, s).axial_offset;
+  const FilmCoefficients k = central_difference_coefficients(
+      film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
+  RingProperties stator, rotor;
+  stator.transverse_inertia = seal.stator.transverse_inertia;
+  stator.support_stiffness = seal.stator.angular_stiffness;
+  stator.support_damping = seal.stator.angular_damping;
+  rotor.transverse_inertia = seal.rotor.transverse_inertia;
+  rotor.polar_inertia = seal.rotor.polar_inertia;
+  rotor.support_stiffness = seal.rotor.angular_stiffness;
+  rotor.support_damping = seal.rotor.angular_damping;
+  rotor.rotating_damping = seal.rotor.rotating_damping;
+  rotor.support_misalignment = seal.runout.tilt;
+  rotor.dynamic_misalignment = seal.rotor.dynamic_misalignment;
+  const AngularSealDynamics linear(SealConfiguration::fms_flexible_rotor, rotor, stator,
+                                   [k](double, double) { return k; });
+  const ForcedResponse response = linear.forced_response(omega, 0);
+  const double expected_relative = ForcedResponse::max_magnitude(response.relative_tilt);
+  const double expected_rotor = ForcedResponse::max_magnitude(response.rotor_tilt);
+  double slowest = -std::numeric_limits<double>::infinity();
+  for (const auto &l : linear.eigenvalues(omega, 0))
+    slowest = std::max(slowest, l.real());
+  ASSERT_LT(slowest, 0);
+
+  TransientSettings settings;
+  settings.initial_axial_offset = s.axial_offset / C0;
+  settings.relative_tolerance = 1e-9;
+  settings.absolute_tolerance = 1e-9;
+  settings.minimum_step = 1e-18; // the fast mode is excited at t = 0 (see above)
+  settings.end_time = 12 / -slowest;
+  settings.output_interval = settings.end_time;
+  const StatorTransient transient(seal, film, settings);
+  const auto result = transient.run();
+  ASSERT_TRUE(result.complete) << result.stop_reason;
+  const TransientSample &end = result.samples.back();
+  const double rotor_tilt = std::hypot(end.rotor_tilt_x, end.rotor_tilt_y);
+  std::cout << "relative tilt: transient " << end.relative_tilt << " rad, linear "
+            << expected_relative << " rad; rotor tilt: transient " << rotor_tilt << " rad, linear "
+            << expected_rotor << " rad; slowest root " << slowest << " 1/s" << std::endl;
+  EXPECT_NEAR(end.relative_tilt / expected_relative, 1, 0.01);
+  EXPECT_NEAR(rotor_tilt / expected_rotor, 1, 0.01);
+}
