@@ -367,6 +367,27 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   return e;
 }
 
+double StatorTransient::contact_margin(const double t, const State &y) const
+{
+  FilmState s;
+  s.tilt_x = y[2];
+  s.tilt_y = y[3];
+  s.axial_offset = y[0];
+  s.rotor_speed = seal.ramps.speed.value(t);
+  s.inner_pressure = seal.ramps.inner_pressure.value(t);
+  s.outer_pressure = seal.ramps.outer_pressure.value(t);
+  s.time = t;
+  if (!seal.thermal.enabled())
+    s.coning = seal.geometry.coning;
+  else if (seal.thermal.time_constant > 0)
+    s.coning = y[6];
+  else
+    s.coning = quasi_static_coning(seal, s);
+  const double closing = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
+                                            s.inner_pressure, s.outer_pressure);
+  return seal.contact.loads(s.apply(seal.geometry)).force - settings.contact_threshold * closing;
+}
+
 std::array<double, 2> StatorTransient::rotor_tilt(const double shaft_angle) const
 {
   return seal.runout.vector(rotating ? 0.0 : shaft_angle);

@@ -251,28 +251,33 @@ nlohmann::json sample_json(const TransientSample &s)
           {"leaked_volume", s.leaked_volume}};
 }
 
-/// Lift-off / touch-down events, the largest contact force and the leaked volume.
-nlohmann::json events(const std::vector<TransientSample> &rows, const double threshold)
+/// Lift-off / touch-down events (IDA's root finding), the largest contact force (over the output
+/// rows) and the leaked volume.
+nlohmann::json events(const StatorTransient::Result &result)
 {
+  const auto &rows = result.samples;
   nlohmann::json first_lift_off = nullptr, last_touch_down = nullptr;
   double max_contact = 0, t_max = 0;
-  for (std::size_t i = 0; i < rows.size(); ++i)
-  {
-    const bool in = rows[i].contact_force > threshold * rows[i].closing_force;
-    if (rows[i].contact_force > max_contact)
+  for (const auto &row : rows)
+    if (row.contact_force > max_contact)
     {
-      max_contact = rows[i].contact_force;
-      t_max = rows[i].time;
+      max_contact = row.contact_force;
+      t_max = row.time;
     }
-    if (i == 0)
-      continue;
-    const bool was = rows[i - 1].contact_force > threshold * rows[i - 1].closing_force;
-    if (was && !in && first_lift_off.is_null())
-      first_lift_off = {{"time", rows[i].time}, {"rotor_speed", rows[i].rotor_speed}};
-    if (!was && in)
-      last_touch_down = {{"time", rows[i].time}, {"rotor_speed", rows[i].rotor_speed}};
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto &e : result.contact_events)
+  {
+    const nlohmann::json event = {{"time", e.time}, {"rotor_speed", e.rotor_speed}};
+    all.push_back({{"time", e.time},
+                   {"rotor_speed", e.rotor_speed},
+                   {"event", e.lift_off ? "lift-off" : "touch-down"}});
+    if (e.lift_off && first_lift_off.is_null())
+      first_lift_off = event;
+    if (!e.lift_off)
+      last_touch_down = event;
   }
-  return {{"first_lift_off", first_lift_off},
+  return {{"contact_events", all},
+          {"first_lift_off", first_lift_off},
           {"last_touch_down", last_touch_down},
           {"max_contact_force", max_contact},
           {"time_of_max_contact_force", t_max},
@@ -328,7 +333,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   }
   output::write_file_atomically(dir, "transient.csv", csv_text(result.samples));
 
-  nlohmann::json s = events(result.samples, settings.contact_threshold);
+  nlohmann::json s = events(result);
   s["complete"] = result.complete;
   if (!result.complete)
     s["stop_reason"] = result.stop_reason;

@@ -149,9 +149,18 @@ public:
   StatorTransient(const FlexibleStatorSeal &seal, const FilmForceModel &film,
                   const TransientSettings &settings);
 
+  /// A crossing of the contact threshold (contact force = Contact threshold x F_cls), located by
+  /// IDA's root finding between steps (to the integrator's time resolution, not the output rows).
+  struct ContactEvent
+  {
+    double time, rotor_speed;
+    bool lift_off; ///< true: the contact force falls below the threshold; false: touch-down
+  };
+
   struct Result
   {
     std::vector<TransientSample> samples;
+    std::vector<ContactEvent> contact_events;
     bool complete = false;
     std::string stop_reason;
     unsigned long film_evaluations = 0;
@@ -168,6 +177,9 @@ public:
 
   /// The full sample (loads included) for the physical state y at time t.
   TransientSample sample(double t, const TransientState &y) const;
+  /// Contact force minus Contact threshold x F_cls at the state (N): > 0 in contact. Contact
+  /// only (no film evaluation).
+  double contact_margin(double t, const TransientState &y) const;
   /// The initial state (TransientState), a the relative tilt; a flexible rotor at its runout.
   TransientState initial_state() const;
 
