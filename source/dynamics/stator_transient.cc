@@ -367,6 +367,11 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   return e;
 }
 
+FilmState StatorTransient::film_state(const double t, const State &y) const
+{
+  return evaluate(t, y).state;
+}
+
 double StatorTransient::contact_margin(const double t, const State &y) const
 {
   FilmState s;

@@ -143,9 +143,36 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   state.stator_speed = seal.conditions.stator_speed;
   state.inner_pressure = seal.conditions.inner_pressure;
   state.outer_pressure = seal.conditions.outer_pressure;
-  const SealEquilibrium eq = solve_equilibrium(seal, *film, state);
-  state.axial_offset = eq.axial_offset;
-  state.coning = eq.coning;
+  SealEquilibrium eq = solve_equilibrium(seal, *film, state);
+
+  // the tilts: the steady state of the transient's equations at these conditions held constant
+  // (in the frame turning with the shaft under runout, the inertial one under a stator
+  // misalignment), started from the axisymmetric balance
+  FlexibleStatorSeal held = seal;
+  held.ramps.speed = Ramp{state.rotor_speed, state.rotor_speed, 0, 1e300, 1e300};
+  held.ramps.outer_pressure = Ramp{state.outer_pressure, state.outer_pressure, 0, 1e300, 1e300};
+  held.ramps.inner_pressure = Ramp{state.inner_pressure, state.inner_pressure, 0, 1e300, 1e300};
+  TransientSettings settings;
+  settings.parse_parameters(prm);
+  settings.end_time = 1;
+  settings.output_interval = 1;
+  const StatorTransient steady(held, *film, settings);
+  TransientState guess{};
+  guess[0] = eq.axial_offset;
+  guess[6] = eq.coning;
+  const auto runout = seal.runout.vector(0);
+  guess[8] = runout[0];
+  guess[9] = runout[1];
+  unsigned int newton_iterations = 0;
+  const TransientState y = steady.steady_state(0, guess, &newton_iterations);
+  state = steady.film_state(0, y);
+  const TransientSample at = steady.sample(0, y);
+  eq.axial_offset = y[0];
+  eq.coning = at.coning;
+  eq.film = film->loads(state);
+  eq.contact = seal.contact.loads(state.apply(seal.geometry));
+  eq.support_force = -seal.stator.axial_stiffness * y[0];
+
   const FilmCoefficients k = central_difference_coefficients(*film, state, eq.contact.min_film,
                                                              seal.geometry.outer_radius);
   // contact stiffness: central difference of the contact force in z
@@ -183,11 +210,22 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   s["roots_found"] = eq.roots_found;
   s["film_model"] = film->description();
   s["film_evaluations"] = film->evaluations();
-  s["tilts"] = "not solved: the equilibrium is axisymmetric (stator misalignment and runout "
-               "ignored)";
+  s["relative_tilt"] = at.relative_tilt;
+  s["stator_tilt"] = at.stator_tilt();
+  s["stator_tilt_x"] = at.stator_tilt_x;
+  s["stator_tilt_y"] = at.stator_tilt_y;
+  s["rotor_tilt"] = std::hypot(at.rotor_tilt_x, at.rotor_tilt_y);
+  s["film_moment_x"] = at.film_moment_x;
+  s["film_moment_y"] = at.film_moment_y;
+  s["contact_moment_x"] = at.contact_moment_x;
+  s["contact_moment_y"] = at.contact_moment_y;
+  s["tilt_newton_iterations"] = newton_iterations;
+  s["tilts"] = "steady state of the transient's equations (tilts at t = 0, shaft angle 0; under "
+               "runout the stator whirls with the shaft and these turn with it)";
   std::cout << "sealfe equilibrium: clearance " << seal.geometry.clearance + eq.axial_offset
             << " m, min film / sigma " << s["min_film_over_sigma"].get<double>() << ", coning "
-            << eq.coning << " rad, leakage " << eq.film.leakage_inner << " m^3/s\n";
+            << eq.coning << " rad, relative tilt " << at.relative_tilt << " rad, leakage "
+            << eq.film.leakage_inner << " m^3/s\n";
   return s;
 }
 } // namespace equilibrium

@@ -232,3 +232,91 @@ TEST(VarneyGreen2017Transient, FlexibleRotorTrackingEqualsTheLinearForcedRespons
   EXPECT_NEAR(end.relative_tilt / expected_relative, 1, 0.01);
   EXPECT_NEAR(rotor_tilt / expected_rotor, 1, 0.01);
 }
+
+namespace
+{
+/// The transient's equations at the constant conditions of constant_seal().
+TransientSettings steady_settings(const FlexibleStatorSeal &seal, const FilmForceModel &film)
+{
+  FilmState s;
+  s.rotor_speed = omega;
+  s.inner_pressure = 1e5;
+  s.outer_pressure = 5e5;
+  s.coning = seal.geometry.coning;
+  TransientSettings settings;
+  settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
+  return settings;
+}
+} // namespace
+
+// The operating point with tilts (what `sealfe equilibrium` solves): a small stator misalignment g
+// fixed in space, no runout, no contact. Linear statics: the film's tilt stiffness K_f (2 x 2 with
+// its cross-coupled part, central differences of the loads at the aligned equilibrium) and the
+// support K_s share the misalignment: (K_f + K_s I) a = K_s g.
+TEST(Green2002Equilibrium, TiltedBalanceIsTheLinearStaticsOfTheMisalignment)
+{
+  FlexibleStatorSeal seal = constant_seal();
+  seal.runout.tilt = 0;
+  // a support as stiff as the film (K_f ~ 3e8 N m/rad here): the two share the misalignment
+  seal.stator.angular_stiffness = 3e8;
+  seal.stator.initial_misalignment = 1e-7;
+  seal.stator.misalignment_angle = 0.3;
+  const auto film = full_film(seal);
+  const TransientSettings settings = steady_settings(seal, film);
+  const StatorTransient transient(seal, film, settings);
+  const TransientState y = transient.steady_state(0, transient.initial_state());
+
+  FilmState s;
+  s.rotor_speed = omega;
+  s.inner_pressure = 1e5;
+  s.outer_pressure = 5e5;
+  s.coning = seal.geometry.coning;
+  s.axial_offset = settings.initial_axial_offset * C0;
+  const FilmCoefficients k = central_difference_coefficients(
+      film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
+  const double Ks = seal.stator.angular_stiffness;
+  const auto g = tilt_vector(seal.stator.initial_misalignment, seal.stator.misalignment_angle);
+  const double a11 = k.stiffness[1][1] + Ks, a12 = k.stiffness[1][2], a21 = k.stiffness[2][1],
+               a22 = k.stiffness[2][2] + Ks;
+  const double det = a11 * a22 - a12 * a21;
+  const double ax = Ks * (a22 * g[0] - a12 * g[1]) / det, ay = Ks * (a11 * g[1] - a21 * g[0]) / det;
+  std::cout << "tilt: steady state (" << y[2] << ", " << y[3] << "), linear statics (" << ax << ", "
+            << ay << ") rad" << std::endl;
+  const double size = std::hypot(ax, ay);
+  // the relative tilt a ro ~ 2e-9 m against a 0.27 um film: nonlinearity < 1e-2 of the tilt
+  EXPECT_NEAR(y[2], ax, 1e-2 * size);
+  EXPECT_NEAR(y[3], ay, 1e-2 * size);
+}
+
+// A transient at these constant conditions settles on that tilted operating point (to the
+// integrator's tolerance), started aligned.
+TEST(Green2002Equilibrium, TransientSettlesOnTheTiltedBalance)
+{
+  FlexibleStatorSeal seal = constant_seal();
+  seal.runout.tilt = 0;
+  seal.stator.initial_misalignment = 1e-6;
+  const auto film = full_film(seal);
+  TransientSettings settings = steady_settings(seal, film);
+  const StatorTransient steady(seal, film, settings);
+  const TransientState y = steady.steady_state(0, steady.initial_state());
+
+  const auto eig = linear_fms(seal, film, 0).eigenvalues(omega, 0);
+  double slowest = -std::numeric_limits<double>::infinity();
+  for (const auto &l : eig)
+    slowest = std::max(slowest, l.real());
+  settings.relative_tolerance = 1e-9;
+  settings.absolute_tolerance = 1e-9;
+  settings.minimum_step = 1e-18;
+  settings.end_time = 20 / -slowest; // the start has decayed by e^-20
+  settings.output_interval = settings.end_time;
+  const StatorTransient transient(seal, film, settings);
+  const auto result = transient.run();
+  ASSERT_TRUE(result.complete) << result.stop_reason;
+  const TransientSample &end = result.samples.back();
+  const double size = std::hypot(y[2], y[3]);
+  std::cout << "relative tilt: transient (" << end.stator_tilt_x << ", " << end.stator_tilt_y
+            << "), steady state (" << y[2] << ", " << y[3] << ") rad" << std::endl;
+  EXPECT_NEAR(end.stator_tilt_x, y[2], 1e-5 * size); // rotor aligned: a_s = a
+  EXPECT_NEAR(end.stator_tilt_y, y[3], 1e-5 * size);
+  EXPECT_NEAR(end.axial_offset, y[0], 1e-6 * C0);
+}

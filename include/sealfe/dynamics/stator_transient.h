@@ -177,6 +177,18 @@ public:
 
   /// The full sample (loads included) for the physical state y at time t.
   TransientSample sample(double t, const TransientState &y) const;
+  /// The steady state of these equations at time t's conditions, held constant: every rate zero
+  /// in the integration frame — the frame turning with the shaft when runout (or a flexible
+  /// rotor's dynamic misalignment) forces the seal, the inertial one when only the stator's
+  /// initial misalignment does. Unknowns: Z, the relative tilt, beta (first-order lag), the
+  /// flexible rotor's tilt; Newton with a central-difference Jacobian from `guess` (its rates
+  /// are ignored). Throws std::runtime_error (one line) when both forcings are present (no
+  /// steady state exists) or Newton does not converge. `iterations` gets Newton's count.
+  TransientState steady_state(double t, const TransientState &guess,
+                              unsigned int *iterations = nullptr) const;
+  /// The film's state at (t, y): tilts in the integration frame with their inertial rates, the
+  /// coning in use, the ramps' speeds and pressures.
+  FilmState film_state(double t, const TransientState &y) const;
   /// Contact force minus Contact threshold x F_cls at the state (N): > 0 in contact. Contact
   /// only (no film evaluation).
   double contact_margin(double t, const TransientState &y) const;
