@@ -331,6 +331,16 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
 
 StatorTransient::Evaluation StatorTransient::evaluate(const double t, const State &y) const
 {
+  for (const double v : y)
+    if (!std::isfinite(v))
+      throw std::runtime_error("the state is not finite: the faces opened without bound or the "
+                               "integration diverged");
+  if (y[0] > 1e3 * seal.geometry.clearance)
+  {
+    std::ostringstream m;
+    m << "the faces opened without bound (Z = " << y[0] / seal.geometry.clearance << " C0)";
+    throw std::runtime_error(m.str());
+  }
   Evaluation e;
   const double omega = seal.ramps.speed.value(t);
   e.shaft_angle = seal.ramps.speed.integral(t);
