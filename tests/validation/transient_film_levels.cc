@@ -166,3 +166,34 @@ end
   EXPECT_LE(std::abs(Z1.back() - Z2.back()),
             t.back() * 2 * force_error * std::abs(F2[0]) / D_zz + 1e-16);
 }
+
+// Level 2: a transient at constant conditions started 0.002 C0 off the balance settles on the
+// operating point of `sealfe equilibrium` with the same finite-element film. The slow axial root
+// is ~ -0.6 1/s here (film stiffness over squeeze damping): after 25 s the start has decayed to
+// 0.002 e^-15 ~ 1e-9 C0, below the tolerance (the integrator's 1e-8 and the balance's root).
+TEST(TransientFilmLevels, FiniteElementTransientSettlesOnTheEquilibrium)
+{
+  const auto dir = fresh_directory("sealfe_transient_level2_settles");
+  const std::string level2 = "subsection Transient\n  set Film level = finite element\nend\n";
+  const auto eq_dir = dir / "equilibrium";
+  std::filesystem::create_directories(eq_dir);
+  const auto eq = run_sealfe(eq_dir, "equilibrium", seal + transient + level2);
+  ASSERT_EQ(eq.status, 0) << eq.err;
+  const auto balance = nlohmann::json::parse(read_file(eq_dir / "out" / "summary.json"));
+  const double C0 = 1e-6, z_eq = balance.at("axial_offset").get<double>();
+
+  const auto tr_dir = dir / "transient";
+  std::filesystem::create_directories(tr_dir);
+  std::ostringstream settings;
+  settings.precision(17);
+  settings << "subsection Transient\n  set Film level = finite element\n"
+           << "  set Initial axial offset = " << z_eq / C0 + 0.002 << "\n"
+           << "  set End time = 25\n  set Output interval = 25\n"
+           << "  set Relative tolerance = 1e-8\n  set Absolute tolerance = 1e-8\nend\n";
+  const auto tr = run_sealfe(tr_dir, "transient", seal + transient + settings.str());
+  ASSERT_EQ(tr.status, 0) << tr.err;
+  const auto csv = read_csv(read_file(tr_dir / "out" / "transient.csv"));
+  const double z_end = column(csv, {"Z", "axial_offset"}).back();
+  std::cout << "level 2: Z(25 s) = " << z_end << " m, equilibrium " << z_eq << " m" << std::endl;
+  EXPECT_NEAR(z_end / C0, z_eq / C0, 1e-6);
+}
