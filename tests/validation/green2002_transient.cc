@@ -169,6 +169,37 @@ TEST(Green2002Transient, ConingFollowsTheFirstOrderLag)
     EXPECT_NEAR(x.coning / beta_ss, 1 - std::exp(-x.time / tau), 1e-7) << "t = " << x.time;
 }
 
+// The limits of Eq. 11: tau -> 0 gives the quasi-static coning beta_ss at once (tau = 0 is solved
+// algebraically; a tau of 1 us relaxes within the first output interval), tau -> infinity keeps
+// beta(0).
+TEST(Green2002Transient, ConingLimitsOfTheTimeConstant)
+{
+  const double beta_ss = 5e-6 * (0.3e-6 / C0) * std::pow(1500.0 / 500.0, 2);
+  for (const double tau : {0.0, 1e-6, 1e9})
+  {
+    FlexibleStatorSeal seal = constant_seal(1500, 1e5, 1e5, false);
+    seal.thermal.film = ThermalConing::Film::centerline;
+    seal.thermal.time_constant = tau;
+    seal.thermal.initial_coning = 2e-5;
+    const ClosingForceFilm film(seal);
+    TransientSettings settings;
+    settings.end_time = 1;
+    settings.output_interval = 0.25;
+    settings.relative_tolerance = 1e-9;
+    settings.absolute_tolerance = 1e-9;
+    settings.initial_axial_offset = 0;
+    const auto result = StatorTransient(seal, film, settings).run();
+    ASSERT_TRUE(result.complete) << result.stop_reason;
+    for (const TransientSample &x : result.samples)
+    {
+      if (x.time == 0 && tau > 0)
+        continue; // beta(0) is the initial coning
+      const double expected = tau > 1 ? 2e-5 : beta_ss;
+      EXPECT_NEAR(x.coning / expected, 1, 1e-6) << "tau = " << tau << " s, t = " << x.time;
+    }
+  }
+}
+
 // Lift-off is located by IDA's root finding, not by the output rows: on the Green 2002 reference
 // start-up with beta_ref = 1.23e-4 rad (the faces lift off, doc/transient.md) and rows 1 s apart,
 // the reported lift-off time t* is where the contact force equals the contact threshold times the
