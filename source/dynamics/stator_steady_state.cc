@@ -39,12 +39,16 @@ TransientState StatorTransient::steady_state(const double t, const TransientStat
     unknowns.push_back({8, 10});
     unknowns.push_back({9, 11});
   }
+  if (seal.rotor.axially_flexible())
+    unknowns.push_back({12, 13});
   const unsigned int n = unknowns.size();
   TransientState y = guess;
-  for (const unsigned int i : {1, 4, 5, 10, 11})
+  for (const unsigned int i : {1, 4, 5, 10, 11, 13})
     y[i] = 0;
   if (!seal.rotor.flexible)
     y[8] = y[9] = 0;
+  if (!seal.rotor.axially_flexible())
+    y[12] = 0;
 
   // scaled residual: each rate in units of its state's scale per ms
   auto residual = [&](const TransientState &state)

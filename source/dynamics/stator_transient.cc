@@ -119,6 +119,11 @@ void RotorRing::declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Dynamic misalignment", "0", Double(0),
                     "chi (rad): principal axes against the spin axis; forces (I_tr - I_pr) chi "
                     "omega^2 (Varney & Green 2017 Appendix A).");
+  prm.declare_entry("Axial stiffness", "0", Double(0),
+                    "K_zr (N/m) of Varney & Green 2017 Eq. 7: > 0 makes the flexible rotor's "
+                    "axial motion a state (the film gap is C0 + Z - u_zr); 0: axially rigid.");
+  prm.declare_entry("Axial damping", "0", Double(0), "D_zr (N s/m).");
+  prm.declare_entry("Mass", "1", Double(0), "m_r (kg), > 0 when Axial stiffness > 0.");
   prm.leave_subsection();
 }
 
@@ -132,6 +137,9 @@ void RotorRing::parse_parameters(dealii::ParameterHandler &prm)
   angular_damping = prm.get_double("Angular damping");
   rotating_damping = prm.get_double("Rotating damping");
   dynamic_misalignment = prm.get_double("Dynamic misalignment");
+  axial_stiffness = prm.get_double("Axial stiffness");
+  axial_damping = prm.get_double("Axial damping");
+  mass = prm.get_double("Mass");
   prm.leave_subsection();
 }
 
@@ -144,7 +152,7 @@ void RotorRing::validate() const
     s << "Rotor ring: Transverse inertia must be > 0, got " << transverse_inertia << " kg m^2";
   else
     for (const double v : {polar_inertia, angular_stiffness, angular_damping, rotating_damping,
-                           dynamic_misalignment})
+                           dynamic_misalignment, axial_stiffness, axial_damping})
       if (!(v >= 0) || !std::isfinite(v))
       {
         s << "Rotor ring: inertia, stiffness, damping and misalignment must be finite and >= 0, "
@@ -152,6 +160,8 @@ void RotorRing::validate() const
           << v;
         break;
       }
+  if (s.str().empty() && axial_stiffness > 0 && !(mass > 0 && std::isfinite(mass)))
+    s << "Rotor ring: Mass must be > 0 with an Axial stiffness, got " << mass << " kg";
   if (!s.str().empty())
     throw std::runtime_error(s.str());
 }
@@ -321,7 +331,7 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
   const double C0 = seal.geometry.clearance, ro = seal.geometry.outer_radius;
   const double rate = 1e3; // 1/s: velocities are scaled as displacements per ms
   scale = {{C0, C0 * rate, C0 / ro, C0 / ro, C0 / ro * rate, C0 / ro * rate, C0 / ro, 1e-9, C0 / ro,
-            C0 / ro, C0 / ro * rate, C0 / ro * rate}};
+            C0 / ro, C0 / ro * rate, C0 / ro * rate, C0, C0 * rate}};
   // the frame in which the forcing is steady: the rotor's runout is fixed in the rotating
   // frame, the stator's initial misalignment in the inertial one
   rotating = settings.frame == "rotating" ||
@@ -351,8 +361,9 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   s.tilt_y = y[3];
   s.tilt_rate_x = rotating ? y[4] - omega * y[3] : y[4];
   s.tilt_rate_y = rotating ? y[5] + omega * y[2] : y[5];
-  s.axial_offset = y[0];
-  s.axial_velocity = y[1];
+  // the gap: stator Z less the rotor's axial displacement (0 unless the rotor is axially flexible)
+  s.axial_offset = y[0] - y[12];
+  s.axial_velocity = y[1] - y[13];
   s.rotor_speed = omega;
   s.stator_speed = 0;
   s.inner_pressure = seal.ramps.inner_pressure.value(t);
@@ -368,7 +379,7 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   e.heating_film = seal.thermal.film == ThermalConing::Film::minimum
                        ? std::max(e.contact.min_film, 0.1 * seal.contact.composite_roughness())
                    : seal.thermal.film == ThermalConing::Film::centerline
-                       ? seal.geometry.clearance + y[0]
+                       ? seal.geometry.clearance + y[0] - y[12]
                        : e.contact.heating_film;
   ++evaluations;
   e.film = film.loads(s);
@@ -387,7 +398,7 @@ double StatorTransient::contact_margin(const double t, const State &y) const
   FilmState s;
   s.tilt_x = y[2];
   s.tilt_y = y[3];
-  s.axial_offset = y[0];
+  s.axial_offset = y[0] - y[12];
   s.rotor_speed = seal.ramps.speed.value(t);
   s.inner_pressure = seal.ramps.inner_pressure.value(t);
   s.outer_pressure = seal.ramps.outer_pressure.value(t);
@@ -497,6 +508,14 @@ State StatorTransient::rate(const double t, const State &y) const
     d[10] = ddr[0];
     d[11] = ddr[1];
   }
+  if (seal.rotor.axially_flexible())
+  {
+    // Varney & Green 2017 Eq. 7: the film and contact push the rotor away from the stator
+    d[12] = y[13];
+    d[13] = (-(e.film.force_z + e.contact.force) - seal.rotor.axial_stiffness * y[12] -
+             seal.rotor.axial_damping * y[13]) /
+            seal.rotor.mass;
+  }
   return d;
 }
 
@@ -528,6 +547,14 @@ State StatorTransient::initial_state() const
   {
     const Evaluation e = evaluate(0, y);
     y[0] = solve_equilibrium(seal, film, e.state).axial_offset;
+  }
+  if (seal.rotor.axially_flexible())
+  {
+    // y[0] so far is the gap's offset: the rotor starts at rest, deflected by the film and
+    // contact at that gap, and the stator sits that much further
+    const Evaluation e = evaluate(0, y);
+    y[12] = -(e.film.force_z + e.contact.force) / seal.rotor.axial_stiffness;
+    y[0] += y[12];
   }
   return y;
 }

@@ -214,7 +214,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   const StatorTransient steady(held, *film, settings);
   state = steady.film_state(0, y);
   const TransientSample at = steady.sample(0, y);
-  eq.axial_offset = y[0];
+  eq.axial_offset = y[0] - y[12]; // the gap's offset (stator less an axially flexible rotor)
   eq.coning = at.coning;
   eq.film = film->loads(state);
   eq.contact = seal.contact.loads(state.apply(seal.geometry));
@@ -266,6 +266,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   s["film_moment_y"] = at.film_moment_y;
   s["contact_moment_x"] = at.contact_moment_x;
   s["contact_moment_y"] = at.contact_moment_y;
+  s["stator_axial_offset"] = y[0];
+  s["rotor_axial_offset"] = y[12];
   s["tilt_newton_iterations"] = newton_iterations;
   s["tilt_continuation_steps"] = continuation_steps;
   s["tilts"] = "steady state of the transient's equations (tilts at t = 0, shaft angle 0; under "

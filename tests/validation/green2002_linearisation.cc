@@ -9,6 +9,10 @@
 #include <sealfe/dynamics/equilibrium.h>
 #include <sealfe/dynamics/stator_transient.h>
 
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <boost/math/tools/roots.hpp>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -319,4 +323,122 @@ TEST(Green2002Equilibrium, TransientSettlesOnTheTiltedBalance)
   EXPECT_NEAR(end.stator_tilt_x, y[2], 1e-5 * size); // rotor aligned: a_s = a
   EXPECT_NEAR(end.stator_tilt_y, y[3], 1e-5 * size);
   EXPECT_NEAR(end.axial_offset, y[0], 1e-6 * C0);
+}
+
+// Varney & Green 2017 Eq. 7, statics: with the rotor axially flexible (K_zr) the film pushes it
+// back by F_f / K_zr and the stator follows, so the gap offset g solves
+//   F_f(g) - F_cls - K_sz (g - F_f(g) / K_zr) = 0
+// (no contact) — solved here by toms748 on the film alone, against the steady state.
+TEST(VarneyGreen2017Transient, AxiallyFlexibleRotorStatics)
+{
+  FlexibleStatorSeal seal = constant_seal();
+  seal.runout.tilt = 0;
+  seal.rotor.flexible = true;
+  seal.rotor.axial_stiffness = 1e9; // N/m: the rotor gives 0.5 um under the ~500 N film force
+  seal.rotor.mass = 2;
+  const auto film = full_film(seal);
+  FilmState s;
+  s.rotor_speed = omega;
+  s.inner_pressure = 1e5;
+  s.outer_pressure = 5e5;
+  s.coning = seal.geometry.coning;
+  const double F_cls = seal.closing.value(ri, ro, 1e5, 5e5);
+  const double K_sz = seal.stator.axial_stiffness, K_zr = seal.rotor.axial_stiffness;
+  auto balance = [&](const double g)
+  {
+    FilmState at = s;
+    at.axial_offset = g;
+    const double F = film.loads(at).force_z;
+    return F - F_cls - K_sz * (g - F / K_zr);
+  };
+  boost::uintmax_t iterations = 200;
+  const auto root = boost::math::tools::toms748_solve(
+      balance, -0.95 * C0, 5 * C0, boost::math::tools::eps_tolerance<double>(50), iterations);
+  const double g = 0.5 * (root.first + root.second);
+  FilmState at = s;
+  at.axial_offset = g;
+  const double u_zr = -film.loads(at).force_z / K_zr;
+
+  TransientSettings settings = steady_settings(seal, film);
+  const StatorTransient transient(seal, film, settings);
+  const TransientState y = transient.steady_state(0, transient.initial_state());
+  std::cout << "gap offset: steady state " << y[0] - y[12] << " m, independent " << g
+            << " m; rotor " << y[12] << " m vs " << u_zr << " m" << std::endl;
+  EXPECT_NEAR(y[0] - y[12], g, 1e-9 * C0);
+  EXPECT_NEAR(y[12], u_zr, 1e-9 * std::abs(u_zr));
+  EXPECT_NEAR(y[0], g + u_zr, 1e-9 * C0);
+}
+
+// Varney & Green 2017 Eq. 7, dynamics: a small axial offset of the stator decays at the slowest
+// root of the two-mass system stator - film - rotor, linearised at the balance:
+//   m_s Z'' = -K_f (Z - u) - D_f (Z' - u') - K_sz Z - D_sz Z'
+//   m_r u'' =  K_f (Z - u) + D_f (Z' - u') - K_zr u - D_zr u'
+// (K_f, D_f: the film's central differences at the balance; eigenvalues by LAPACK).
+TEST(VarneyGreen2017Transient, AxiallyFlexibleRotorDecaysAtTheLinearisedRoot)
+{
+  FlexibleStatorSeal seal = constant_seal();
+  seal.runout.tilt = 0;
+  seal.rotor.flexible = true;
+  seal.rotor.axial_stiffness = 1e9;
+  seal.rotor.axial_damping = 1e3;
+  seal.rotor.mass = 2;
+  const auto film = full_film(seal);
+  TransientSettings settings = steady_settings(seal, film);
+  const TransientState y_eq =
+      StatorTransient(seal, film, settings)
+          .steady_state(0, StatorTransient(seal, film, settings).initial_state());
+  FilmState s;
+  s.rotor_speed = omega;
+  s.inner_pressure = 1e5;
+  s.outer_pressure = 5e5;
+  s.coning = seal.geometry.coning;
+  s.axial_offset = y_eq[0] - y_eq[12];
+  const FilmCoefficients k = central_difference_coefficients(
+      film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
+  const double Kf = k.stiffness[0][0], Df = k.damping[0][0], ms = seal.stator.mass,
+               mr = seal.rotor.mass;
+  const double Ks = seal.stator.axial_stiffness, Ds = seal.stator.axial_damping,
+               Kr = seal.rotor.axial_stiffness, Dr = seal.rotor.axial_damping;
+  // x = (Z, u, Z', u')
+  dealii::LAPACKFullMatrix<double> A(4, 4);
+  A(0, 2) = A(1, 3) = 1;
+  A(2, 0) = -(Kf + Ks) / ms;
+  A(2, 1) = Kf / ms;
+  A(2, 2) = -(Df + Ds) / ms;
+  A(2, 3) = Df / ms;
+  A(3, 0) = Kf / mr;
+  A(3, 1) = -(Kf + Kr) / mr;
+  A(3, 2) = Df / mr;
+  A(3, 3) = -(Df + Dr) / mr;
+  A.compute_eigenvalues();
+  double slow = -std::numeric_limits<double>::infinity();
+  for (unsigned int i = 0; i < 4; ++i)
+  {
+    const auto l = A.eigenvalue(i);
+    if (l.real() > slow)
+    {
+      slow = l.real();
+      ASSERT_NEAR(l.imag(), 0, 1e-9 * std::abs(l)) << "the slowest root is real here";
+    }
+  }
+  ASSERT_LT(slow, 0);
+
+  const double t1 = 0.2 / -slow, t2 = 1.2 / -slow;
+  // the initial axial offset is the gap's; the rotor starts deflected by the film there
+  settings.initial_axial_offset = (y_eq[0] - y_eq[12]) / C0 + 1e-3;
+  settings.end_time = t2;
+  settings.output_interval = t1;
+  settings.relative_tolerance = 1e-10;
+  settings.absolute_tolerance = 1e-10;
+  settings.minimum_step = 1e-18;
+  const StatorTransient transient(seal, film, settings);
+  const auto result = transient.run();
+  ASSERT_TRUE(result.complete) << result.stop_reason;
+  // Z - Z_eq decays at the slow root once the fast ones have gone
+  const double z1 = result.samples[1].axial_offset - y_eq[0];
+  const double z2 = result.samples.back().axial_offset - y_eq[0];
+  const double rate = std::log(z2 / z1) / (result.samples.back().time - result.samples[1].time);
+  std::cout << "axial decay with the flexible rotor: transient " << rate << " 1/s, linear " << slow
+            << " 1/s" << std::endl;
+  EXPECT_NEAR(rate / slow, 1, 0.01);
 }

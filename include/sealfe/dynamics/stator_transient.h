@@ -54,8 +54,8 @@ struct RotorRunout
 /// with the shaft (Green 2002), or flexible, Varney & Green 2017 Eq. 5-6 — a lumped angular rotor
 /// on the shaft's stiffness K_r, with external damping D_r, rotating damping D_omega_r, gyroscopic
 /// coupling I_pr omega, dynamic misalignment chi, and the runout tilt as its static misalignment
-/// chi_s (the tilt the shaft holds it at, turning with it). Axially the rotor stays rigid (Eq. 7
-/// is left out: the closing force acts on the stator).
+/// chi_s (the tilt the shaft holds it at, turning with it). Axially the rotor is rigid unless
+/// its axial stiffness is set (Eq. 7).
 struct RotorRing
 {
   bool flexible = false;
@@ -65,6 +65,12 @@ struct RotorRing
   double angular_damping = 20;     ///< D_r (N m s/rad)
   double rotating_damping = 1;     ///< D_omega_r (N m s/rad)
   double dynamic_misalignment = 0; ///< chi (rad)
+  /// Axial (Eq. 7, with a flexible rotor only): K_zr > 0 makes the rotor's axial motion a state,
+  /// m_r u_zr'' + D_zr u_zr' + K_zr u_zr = -(F_f + F_c); 0 keeps it axially rigid.
+  double axial_stiffness = 0; ///< K_zr (N/m)
+  double axial_damping = 0;   ///< D_zr (N s/m)
+  double mass = 1;            ///< m_r (kg)
+  bool axially_flexible() const { return flexible && axial_stiffness > 0; }
 
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
@@ -126,9 +132,10 @@ struct FlexibleStatorSeal
 };
 
 /// The state of the transient (physical units): Z, Z', the relative tilt a = a_s - a_r and its
-/// rate, beta, the leaked volume V, the rotor tilt a_r and its rate (flexible rotor only, else 0);
-/// tilts and rates in the integration frame.
-using TransientState = std::array<double, 12>;
+/// rate, beta, the leaked volume V, the rotor tilt a_r and its rate (flexible rotor only, else 0),
+/// the rotor's axial displacement u_zr toward the stator and its rate (axially flexible rotor
+/// only); tilts and rates in the integration frame. The film gap is C0 + Z - u_zr + ...
+using TransientState = std::array<double, 14>;
 
 /// The state of Eq. 26 in Cartesian form (doc/transient.md): Z, Z', the relative tilt
 /// a = a_s - a_r and its rate in the integration frame (turning with the shaft or fixed in
