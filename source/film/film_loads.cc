@@ -222,8 +222,9 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
 
   std::vector<std::vector<double>> sums(n_k, std::vector<double>(n_sums, 0.0));
   double p_min = std::numeric_limits<double>::max(), p_max = -p_min, p_min_nodal = p_min;
-  // reynolds and jfo keep the nodes at or above p_cav; cells where a quadrature point or a node
-  // comes within this of it may carry an interpolant below p_cav (the undershoot, below).
+  // reynolds and jfo keep the nodes at or above p_cav. The interpolant can dip below it only in
+  // the cells at the cavity edge: some node or quadrature point within p_near of p_cav and some
+  // node above it (in a cell whose nodes all sit at p_cav it stays there to round-off).
   const bool undershoot = base && nonlinear;
   const double p_near = p_cav + 1e-9 * std::max(s.pressure_scale, 1.0);
   std::vector<DoFHandler<2>::active_cell_iterator> near_cavity;
@@ -260,9 +261,14 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
       if (undershoot)
       {
         cell->get_dof_values(s.locally_relevant_solution, cell_p);
-        if (*std::min_element(p.begin(), p.end()) <= p_near ||
-            *std::min_element(cell_p.begin(), cell_p.end()) <= p_near)
+        const bool edge = std::min(*std::min_element(p.begin(), p.end()),
+                                   *std::min_element(cell_p.begin(), cell_p.end())) <= p_near &&
+                          *std::max_element(cell_p.begin(), cell_p.end()) > p_near;
+        if (edge)
           near_cavity.push_back(cell);
+        else
+          for (unsigned int q = 0; q < n_q; ++q)
+            sums[0][15] += std::min(p[q] - p_cav, 0.0) * fe_values.JxW(q);
       }
       PointState x;
       x.tau = jfo ? s.streamline_tau(cell) : 0.0;
@@ -324,10 +330,10 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   p_min = std::min(p_min, p_min_nodal);
   if (undershoot && !near_cavity.empty())
   {
-    // The undershoot lives in the cells at the cavity edge, where min(p_h - p_cav, 0) has a kink
-    // that a Gauss rule does not integrate well: there a composite rule of 8 x 8 copies of the
-    // cell's Gauss rule (error O(1/64) of the cut cells' share; tests/validation/
-    // pressure_undershoot.cc), whose points also sharpen the interpolant's minimum.
+    // In the cells at the cavity edge min(p_h - p_cav, 0) has a kink that a Gauss rule does not
+    // integrate well: there a composite rule of 8 x 8 copies of the cell's Gauss rule (error
+    // O(1/64) of the cut cells' share, see tests/validation/pressure_undershoot.cc), whose points
+    // also sharpen the interpolant's minimum.
     const QIterated<2> fine(QGauss<1>(s.polynomial_degree + 2), 8);
     FEValues<2> fine_values(*s.mapping, *s.fe, fine, update_values | update_JxW_values);
     std::vector<double> p_fine(fine.size());
