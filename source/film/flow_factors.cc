@@ -125,7 +125,7 @@ ValueAndSlope pressure_flow_factor(const double H, const double gamma)
 {
   const Bracket b = bracket(gamma); // also refuses gamma outside the tables, at every H
   // Departure from 1 of the fits (exact at the tabulated patterns) for H <= fits_upper_limit.
-  const auto departure = [gamma, b](const double x) -> ValueAndSlope
+  const auto departure = [gamma, &b](const double x) -> ValueAndSlope
   {
     const auto fit = [x](const int k)
     {
@@ -166,9 +166,9 @@ ValueAndSlope pressure_flow_factor(const double H, const double gamma)
   const ValueAndSlope d = departure(H);
   const double span = tripp_from - fits_upper_limit;
   const double s = (H - fits_upper_limit) / span;
-  const double b = s * s * (3. - 2. * s), db = 6. * s * (1. - s) / span;
-  return {1. + (1. - b) * d.value + b * tripp.value,
-          (1. - b) * d.d_dh + b * tripp.d_dh + db * (tripp.value - d.value)};
+  const double t = s * s * (3. - 2. * s), dt = 6. * s * (1. - s) / span;
+  return {1. + (1. - t) * d.value + t * tripp.value,
+          (1. - t) * d.d_dh + t * tripp.d_dh + dt * (tripp.value - d.value)};
 }
 
 double pressure_flow_factor_validity(const double gamma)
