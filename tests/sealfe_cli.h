@@ -93,8 +93,9 @@ inline bool wait_for_text(const fs::path &file, const std::string &needle, const
       ++n;
     if (n >= count)
       return true;
-    if (waitpid(pid, nullptr, WNOHANG) == pid)
-      return false;
+    siginfo_t info = {};
+    if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid)
+      return false; // ended (left to be reaped by wait_sealfe)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return false;

@@ -472,9 +472,10 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   if (stopped)
     // published with complete = false by the driver, then reported (exit 1)
     throw output::IncompleteRun(
-        "Table: " + stop_reason + " after " + std::to_string(summary.value("points_done", 0u)) +
-            " of " + std::to_string(n_points) + " points; the finished rows are in " + directory +
-            "/" + file +
+        "Table: " + stop_reason + " after " +
+            std::to_string(summary.is_object() ? summary.value("points_done", 0u) : 0u) + " of " +
+            std::to_string(n_points) + " points; the finished rows are in " + directory + "/" +
+            file +
             ", summary.json says complete = false (set Resume = true in subsection "
             "Table to compute the rest)",
         summary);

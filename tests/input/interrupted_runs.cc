@@ -129,7 +129,8 @@ TEST(InterruptedRuns, TableKeepsItsFinishedRowsMarkedIncomplete)
     EXPECT_EQ(lines[i].substr(0, lines[i].find(',')), std::to_string(i));
   // the CSV is a plain table (no marker line): the mark is in summary.json
   EXPECT_EQ(read_file(d / "out" / "coefficients.csv").find('#'), std::string::npos);
-  EXPECT_FALSE(fs::exists(d / "out" / (".sealfe-partial-" + std::to_string(0))));
+  for (const auto &e : fs::directory_iterator(d / "out"))
+    EXPECT_NE(e.path().filename().string().rfind(".sealfe-partial-", 0), 0u) << e.path();
 }
 
 TEST(InterruptedRuns, ResumeEndsWithTheTableOfAnUninterruptedRun)
