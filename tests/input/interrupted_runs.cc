@@ -219,9 +219,9 @@ TEST(InterruptedRuns, AllFailingTableLeavesThePreviousTable)
 TEST(InterruptedRuns, SecondSigintEndsTheRunAtOnce)
 {
   const fs::path d = sealfe::testing::fresh_directory("sealfe_interrupted_twice");
-  // a finer mesh: a point takes long enough for both signals to arrive within it
+  // a finer mesh: a point (about 0.2 s) takes long enough for both signals to arrive within it
   std::string body = table_body;
-  body.replace(body.find("set Circumferential cells = 32"), 30, "set Circumferential cells = 512");
+  body.replace(body.find("set Circumferential cells = 32"), 30, "set Circumferential cells = 2048");
   const pid_t pid = sealfe::testing::start_sealfe(d, "table", body);
   ASSERT_TRUE(sealfe::testing::wait_for_text(d / "stderr", ": ok (", 1, pid, 60));
   kill(pid, SIGINT);
