@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -221,6 +222,9 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
 {
   const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+  // From here to the end of the sweep a signal only asks to stop (checked before each round of
+  // points): one during the set-up ends the run before any point, publishing nothing.
+  auto stop_on_signal = std::make_unique<interrupt::StopOnSignal>();
 
   FilmSettings base;
   base.parse_parameters(prm);
@@ -309,7 +313,6 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   double my_time = 0;
   bool stopped = false;
   {
-    const interrupt::StopOnSignal stop_on_signal;
     for (std::size_t first = 0; first < todo.size(); first += n_ranks)
     {
       if (interrupt::requested(comm))
@@ -356,6 +359,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
       std::cerr << progress.str() << std::flush;
     }
   }
+  stop_on_signal.reset();
   const std::string stop_reason = stopped ? interrupt::reason() : std::string();
 
   const std::string all_rows = gather_text(my_rows, comm);
