@@ -1,12 +1,16 @@
 // Test support: run the sealfe binary on a prm body in a fresh directory and read what it wrote.
 #pragma once
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
 
 namespace sealfe::testing
 {
@@ -51,5 +55,73 @@ inline CliResult run_sealfe(const fs::path &dir, const std::string &command,
                           (dir / "stderr").string();
   const int raw = std::system(cmd.c_str());
   return {WEXITSTATUS(raw), read_file(dir / "stdout"), read_file(dir / "stderr")};
+}
+
+/// Starts `sealfe <command> case.prm` in `dir` as run_sealfe does, without waiting (stdout and
+/// stderr in dir/stdout, dir/stderr): for tests that signal the run part-way. Returns its pid.
+inline pid_t start_sealfe(const fs::path &dir, const std::string &command, const std::string &body)
+{
+  const fs::path prm = dir / "case.prm";
+  {
+    std::ofstream out(prm);
+    out << "set Output directory = " << (dir / "out").string() << "\n" << body;
+  }
+  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr))
+      _exit(127);
+    execl(SEALFE_BINARY, SEALFE_BINARY, command.c_str(), prm.c_str(), static_cast<char *>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+/// Waits until `file` contains `needle` at least `count` times (true), the process `pid` ended or
+/// `seconds` passed (false).
+inline bool wait_for_text(const fs::path &file, const std::string &needle, const unsigned int count,
+                          const pid_t pid, const double seconds)
+{
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end)
+  {
+    const std::string text = read_file(file);
+    unsigned int n = 0;
+    for (std::size_t at = text.find(needle); at != std::string::npos;
+         at = text.find(needle, at + needle.size()))
+      ++n;
+    if (n >= count)
+      return true;
+    siginfo_t info = {};
+    if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid)
+      return false; // ended (left to be reaped by wait_sealfe)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+/// Exit status of `pid` (128 + signal if a signal ended it), stdout and stderr; after `seconds`
+/// the process is killed and the status is -1.
+inline CliResult wait_sealfe(const fs::path &dir, const pid_t pid, const double seconds)
+{
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int raw = 0, status = -1;
+  while (true)
+  {
+    if (waitpid(pid, &raw, WNOHANG) == pid)
+    {
+      status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+      break;
+    }
+    if (std::chrono::steady_clock::now() > end)
+    {
+      kill(pid, SIGKILL);
+      waitpid(pid, &raw, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return {status, read_file(dir / "stdout"), read_file(dir / "stderr")};
 }
 } // namespace sealfe::testing

@@ -1,5 +1,7 @@
 #include <sealfe/coefficients/coefficient_solver.h>
+#include <sealfe/coefficients/table_resume.h>
 #include <sealfe/coefficients/table_sweep.h>
+#include <sealfe/io/interrupt.h>
 #include <sealfe/io/output.h>
 #include <sealfe/numerics/number_lists.h>
 
@@ -11,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -105,13 +108,21 @@ std::string describe(const OperatingPoint &p, const SweepPlan &plan)
   return s.str();
 }
 
-/// One CSV row (no newline) of point i: its result, or NaNs and the failure.
-std::string row(const unsigned int i, const SweepPlan &plan, const CoefficientResult *result,
-                const bool with_errors, const std::string &failure)
+/// The start of point i's CSV row: index, role and operating point, with a trailing comma.
+std::string row_prefix(const unsigned int i, const SweepPlan &plan)
 {
   std::string line = std::to_string(i) + (plan.is_check(i) ? ",check" : ",grid");
   for (const auto &[name, unit] : OperatingPoint::columns())
     line += "," + number(plan.points[i].get(name));
+  return line + ",";
+}
+
+/// One CSV row (no newline) of point i: its result, or NaNs and the failure.
+std::string row(const unsigned int i, const SweepPlan &plan, const CoefficientResult *result,
+                const bool with_errors, const std::string &failure)
+{
+  std::string line = row_prefix(i, plan);
+  line.pop_back();
   const auto columns = coefficient_table_format::output_columns(with_errors);
   if (!result)
   {
@@ -198,6 +209,12 @@ void declare_parameters(ParameterHandler &prm)
   prm.declare_entry("Interpolation", "cubic", Patterns::Selection("cubic|linear"),
                     "Interpolation used for the held-out error report (the reader offers both): "
                     "cubic Lagrange on 4 nodes per axis (O(h^4)) or multilinear (O(h^2)).");
+  prm.declare_entry("Resume", "false", Patterns::Bool(),
+                    "Take over the finished rows of the previous table in the Output directory "
+                    "(e.g. one stopped by Ctrl-C, summary.json: complete = false) and compute only "
+                    "the other points. Refused, naming the entry, if any parameter differs from "
+                    "the previous run's (summary.json: parameters). Without a previous run, every "
+                    "point is computed.");
   prm.leave_subsection();
 }
 
@@ -205,6 +222,9 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
 {
   const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+  // From here to the end of the sweep a signal only asks to stop (checked before each round of
+  // points): one during the set-up ends the run before any point, publishing nothing.
+  auto stop_on_signal = std::make_unique<interrupt::StopOnSignal>();
 
   FilmSettings base;
   base.parse_parameters(prm);
@@ -216,6 +236,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
     axes.push_back({column, numerics::parse_number_list(prm.get(entry), "Table: '" + entry + "'")});
   const std::string file = prm.get("Output file");
   const unsigned int n_check = prm.get_integer("Held-out points");
+  const bool resume = prm.get_bool("Resume");
   const auto interpolation = prm.get("Interpolation") == "linear"
                                  ? CoefficientTable::Interpolation::linear
                                  : CoefficientTable::Interpolation::cubic;
@@ -227,146 +248,241 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
 
   const SweepPlan plan =
       SweepPlan::make(OperatingPoint::of(base.geometry, base.conditions), axes, n_check);
-  // Every rank solves its own points on its own: one solver per rank (its mesh is reused while
-  // the swept quantities leave the discretisation unchanged).
-  CoefficientSolver solver(base, coefficient_settings, MPI_COMM_SELF);
+  const unsigned int n_points = plan.points.size();
   const bool with_errors = base.estimate_error;
-  if (rank == 0)
-    std::cerr << "sealfe table: " << plan.n_grid << " grid points + "
-              << plan.points.size() - plan.n_grid << " held-out points on " << n_ranks << " rank(s)"
-              << std::endl;
+  const std::string header = coefficient_table_format::header(with_errors);
+  const nlohmann::json parameters = recorded_parameters(prm);
 
-  // Round-robin: the points of a sweep cost about the same.
-  std::string my_rows;
-  double my_time = 0;
-  for (unsigned int i = rank; i < plan.points.size(); i += n_ranks)
+  // Resume: rank 0 takes over the finished rows of the previous run (refused in one line if its
+  // parameters differ); every rank learns which points are left.
+  PreviousTable previous;
+  std::string refusal;
+  std::vector<unsigned int> finished;
+  if (resume && rank == 0)
   {
-    const auto start = std::chrono::steady_clock::now();
-    // The point's film problem: the swept quantities set by their prm names.
-    FilmSettings point = base;
-    for (const auto &[entry, column] : sweepable())
-      point.set(entry, plan.points[i].get(column));
-    std::string line, failure;
     try
     {
-      const CoefficientResult r = solver.compute(point.geometry, point.conditions);
-      line = row(i, plan, &r, with_errors, "");
+      std::vector<std::string> prefixes;
+      for (unsigned int i = 0; i < n_points; ++i)
+        prefixes.push_back(row_prefix(i, plan));
+      previous =
+          read_previous(output::published_name(directory), file, parameters, header, prefixes);
     }
     catch (std::exception &e)
     {
-      failure = e.what();
+      refusal = e.what();
     }
-    catch (...)
-    {
-      failure = "unknown error";
-    }
-    if (line.empty())
-      line = row(i, plan, nullptr, with_errors, failure.empty() ? "unknown error" : failure);
-    my_rows += line + "\n";
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    my_time += seconds;
-    std::ostringstream progress;
-    progress.precision(3);
-    progress << "sealfe table: point " << i + 1 << "/" << plan.points.size()
-             << (plan.is_check(i) ? " (held-out)" : "") << " [rank " << rank << "] "
-             << describe(plan.points[i], plan) << ": "
-             << (failure.empty() ? "ok" : "FAILED: " + coefficient_table_format::sanitize(failure))
-             << " (" << seconds << " s)\n";
-    std::cerr << progress.str() << std::flush;
+    for (const auto &[i, line] : previous.rows)
+      finished.push_back(i);
   }
+  refusal = Utilities::MPI::broadcast(comm, refusal, 0);
+  if (!refusal.empty())
+    throw std::runtime_error(refusal);
+  finished = Utilities::MPI::broadcast(comm, finished, 0);
+  std::vector<unsigned int> todo;
+  {
+    std::vector<bool> done(n_points, false);
+    for (const unsigned int i : finished)
+      done[i] = true;
+    for (unsigned int i = 0; i < n_points; ++i)
+      if (!done[i])
+        todo.push_back(i);
+  }
+
+  // Every rank solves its own points on its own: one solver per rank (its mesh is reused while
+  // the swept quantities leave the discretisation unchanged).
+  CoefficientSolver solver(base, coefficient_settings, MPI_COMM_SELF);
+  if (rank == 0)
+  {
+    std::cerr << "sealfe table: " << plan.n_grid << " grid points + " << n_points - plan.n_grid
+              << " held-out points on " << n_ranks << " rank(s)" << std::endl;
+    if (resume)
+      std::cerr << "sealfe table: Resume: "
+                << (previous.found
+                        ? std::to_string(finished.size()) + " of " + std::to_string(n_points) +
+                              " points taken over from the previous run"
+                        : "no previous run in " + output::published_name(directory) +
+                              ", every point is computed")
+                << std::endl;
+  }
+
+  // Round-robin over the points left (they cost about the same), one point per rank and round.
+  // Before each round the ranks agree (MPI max) whether a signal asked to stop, so that all stop
+  // after the same round with whole rows.
+  std::string my_rows;
+  double my_time = 0;
+  bool stopped = false;
+  {
+    for (std::size_t first = 0; first < todo.size(); first += n_ranks)
+    {
+      if (interrupt::requested(comm))
+      {
+        stopped = true;
+        break;
+      }
+      if (first + rank >= todo.size())
+        continue;
+      const unsigned int i = todo[first + rank];
+      const auto start = std::chrono::steady_clock::now();
+      // The point's film problem: the swept quantities set by their prm names.
+      FilmSettings point = base;
+      for (const auto &[entry, column] : sweepable())
+        point.set(entry, plan.points[i].get(column));
+      std::string line, failure;
+      try
+      {
+        const CoefficientResult r = solver.compute(point.geometry, point.conditions);
+        line = row(i, plan, &r, with_errors, "");
+      }
+      catch (std::exception &e)
+      {
+        failure = e.what();
+      }
+      catch (...)
+      {
+        failure = "unknown error";
+      }
+      if (line.empty())
+        line = row(i, plan, nullptr, with_errors, failure.empty() ? "unknown error" : failure);
+      my_rows += line + "\n";
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      my_time += seconds;
+      std::ostringstream progress;
+      progress.precision(3);
+      progress << "sealfe table: point " << i + 1 << "/" << plan.points.size()
+               << (plan.is_check(i) ? " (held-out)" : "") << " [rank " << rank << "] "
+               << describe(plan.points[i], plan) << ": "
+               << (failure.empty() ? "ok"
+                                   : "FAILED: " + coefficient_table_format::sanitize(failure))
+               << " (" << seconds << " s)\n";
+      std::cerr << progress.str() << std::flush;
+    }
+  }
+  stop_on_signal.reset();
+  const std::string stop_reason = stopped ? interrupt::reason() : std::string();
 
   const std::string all_rows = gather_text(my_rows, comm);
   const double total_time = Utilities::MPI::sum(my_time, comm);
   const double max_rank_time = Utilities::MPI::max(my_time, comm);
   nlohmann::json summary;
-  unsigned int grid_failures = 0;
-  std::string first_failure;
+  bool complete = false;
   if (rank == 0)
   {
-    // Rows in point order, whatever rank computed them.
-    std::vector<std::pair<unsigned int, std::string>> lines;
+    // Rows in point order, whatever rank (or the previous run) computed them.
+    std::vector<std::pair<unsigned int, std::string>> lines(previous.rows.begin(),
+                                                            previous.rows.end());
     std::istringstream in(all_rows);
     std::string line;
     while (std::getline(in, line))
       lines.emplace_back(std::stoul(line.substr(0, line.find(','))), line);
     std::sort(lines.begin(), lines.end());
-    std::string csv = coefficient_table_format::header(with_errors) + "\n";
+    const unsigned int computed = lines.size() - previous.rows.size();
+    complete = lines.size() == n_points;
+    std::string csv = header + "\n";
     nlohmann::json failures = nlohmann::json::array();
+    unsigned int grid_ok = 0;
     for (const auto &[i, l] : lines)
     {
       csv += l + "\n";
       const auto status = l.find(",failed: ");
       if (status != std::string::npos)
-      {
         failures.push_back({{"index", i},
                             {"role", plan.is_check(i) ? "check" : "grid"},
                             {"message", l.substr(status + 9)}});
-        if (!plan.is_check(i))
-          ++grid_failures;
-      }
+      else if (!plan.is_check(i))
+        ++grid_ok;
     }
-    output::make_directory(directory);
-    output::write_file_atomically(directory, file, csv);
-
-    summary["table"] = file;
-    summary["grid_points"] = plan.n_grid;
-    summary["held_out_points"] = plan.points.size() - plan.n_grid;
-    summary["failed_points"] = failures.size();
-    summary["failures"] = failures;
-    nlohmann::json ax = nlohmann::json::object();
-    for (const auto &a : plan.axes)
-      ax[a.name] = a.values;
-    summary["axes"] = ax;
-    nlohmann::json columns = nlohmann::json::array();
-    std::istringstream header(coefficient_table_format::header(with_errors));
-    for (std::string c; std::getline(header, c, ',');)
-      columns.push_back(c);
-    summary["columns"] = columns;
-    summary["time_per_point"] = total_time / plan.points.size(); // s, one point on one rank
-    summary["sweep_wall_time"] = max_rank_time;
-
-    // Read the file back (the reader the dynamics module uses) and report the interpolation
-    // error at the held-out points.
-    if (grid_failures < plan.n_grid)
+    // Nothing is published then: a previous good table stays.
+    if (stopped && computed == 0)
+      refusal = "Table: " + stop_reason +
+                " before any point finished; nothing was written (the output directory is as it "
+                "was)";
+    else if (grid_ok == 0 && !failures.empty())
+      refusal = std::string("Table: every ") + (complete ? "" : "finished ") +
+                "grid point failed, nothing was written (the first: " +
+                failures.front()["message"].get<std::string>() + ")";
+    else if (grid_ok == 0)
+      refusal = "Table: " + stop_reason + " before any grid point finished; nothing was written";
+    if (refusal.empty())
     {
-      const CoefficientTable table(directory + "/" + file, interpolation);
-      nlohmann::json held = nlohmann::json::array();
-      double worst_k = 0, worst_d = 0;
-      for (const auto &e : table.held_out_errors())
+      output::make_directory(directory);
+      output::write_file_atomically(directory, file, csv);
+
+      summary["table"] = file;
+      summary["complete"] = complete;
+      summary["points_done"] = lines.size();
+      summary["points_total"] = n_points;
+      summary["resumed_points"] = previous.rows.size();
+      if (!complete)
+        summary["stop_reason"] = stop_reason;
+      summary["grid_points"] = plan.n_grid;
+      summary["held_out_points"] = n_points - plan.n_grid;
+      summary["failed_points"] = failures.size();
+      summary["failures"] = failures;
+      nlohmann::json ax = nlohmann::json::object();
+      for (const auto &a : plan.axes)
+        ax[a.name] = a.values;
+      summary["axes"] = ax;
+      nlohmann::json columns = nlohmann::json::array();
+      std::istringstream header_columns(header);
+      for (std::string c; std::getline(header_columns, c, ',');)
+        columns.push_back(c);
+      summary["columns"] = columns;
+      // s, one point on one rank (those computed by this run)
+      summary["time_per_point"] = computed ? total_time / computed : 0.0;
+      summary["sweep_wall_time"] = max_rank_time;
+      // what a resumed run compares (table_resume.h)
+      summary["parameters"] = parameters;
+
+      // Read the file back (the reader the dynamics module uses) and report the interpolation
+      // error at the held-out points; an incomplete table has holes, and no such report.
+      if (complete)
       {
-        nlohmann::json point = nlohmann::json::object();
-        for (const auto &a : plan.axes)
-          point[a.name] = e.point.get(a.name);
-        held.push_back({{"point", point},
-                        {"stiffness", e.stiffness},
-                        {"damping", e.damping},
-                        {"columns", e.columns}});
-        worst_k = std::max(worst_k, e.stiffness);
-        worst_d = std::max(worst_d, e.damping);
+        const CoefficientTable table(directory + "/" + file, interpolation);
+        nlohmann::json held = nlohmann::json::array();
+        double worst_k = 0, worst_d = 0;
+        for (const auto &e : table.held_out_errors())
+        {
+          nlohmann::json point = nlohmann::json::object();
+          for (const auto &a : plan.axes)
+            point[a.name] = e.point.get(a.name);
+          held.push_back({{"point", point},
+                          {"stiffness", e.stiffness},
+                          {"damping", e.damping},
+                          {"columns", e.columns}});
+          worst_k = std::max(worst_k, e.stiffness);
+          worst_d = std::max(worst_d, e.damping);
+        }
+        summary["interpolation"] =
+            interpolation == CoefficientTable::Interpolation::linear ? "linear" : "cubic";
+        summary["held_out_error"] = held;
+        // no held-out point, no claim: null, not a perfect 0
+        const nlohmann::json none = nullptr;
+        summary["max_held_out_error"] = {
+            {"stiffness", held.empty() ? none : nlohmann::json(worst_k)},
+            {"damping", held.empty() ? none : nlohmann::json(worst_d)},
+            {"definition", "max_ij |K~ - K| / max_ij |K| of diag(1, 1/ro, 1/ro) K diag(1, 1/ro, "
+                           "1/ro); the same for D"}};
       }
-      summary["interpolation"] =
-          interpolation == CoefficientTable::Interpolation::linear ? "linear" : "cubic";
-      summary["held_out_error"] = held;
-      // no held-out point, no claim: null, not a perfect 0
-      const nlohmann::json none = nullptr;
-      summary["max_held_out_error"] = {
-          {"stiffness", held.empty() ? none : nlohmann::json(worst_k)},
-          {"damping", held.empty() ? none : nlohmann::json(worst_d)},
-          {"definition", "max_ij |K~ - K| / max_ij |K| of diag(1, 1/ro, 1/ro) K diag(1, 1/ro, "
-                         "1/ro); the same for D"}};
-    }
-    if (grid_failures < plan.n_grid)
       std::cerr << "sealfe table: wrote " << output::published_name(directory + "/" + file) << " ("
-                << plan.points.size() << " rows, " << failures.size() << " failed)" << std::endl;
-    else
-      first_failure = failures.front()["message"].get<std::string>();
+                << lines.size() << " of " << n_points << " rows, " << failures.size() << " failed, "
+                << previous.rows.size() << " taken over from the previous run)" << std::endl;
+    }
   }
-  MPI_Bcast(&grid_failures, 1, MPI_UNSIGNED, 0, comm);
-  // Nothing is published then: a previous good table stays.
-  if (grid_failures == plan.n_grid)
-    throw std::runtime_error(
-        "Table: every grid point failed, nothing was written (the first: " + first_failure + ")");
+  refusal = Utilities::MPI::broadcast(comm, refusal, 0);
+  if (!refusal.empty())
+    throw std::runtime_error(refusal);
+  if (stopped)
+    // published with complete = false by the driver, then reported (exit 1)
+    throw output::IncompleteRun(
+        "Table: " + stop_reason + " after " +
+            std::to_string(summary.is_object() ? summary.value("points_done", 0u) : 0u) + " of " +
+            std::to_string(n_points) + " points; the finished rows are in " + directory + "/" +
+            file +
+            ", summary.json says complete = false (set Resume = true in subsection "
+            "Table to compute the rest)",
+        summary);
   return summary;
 }
 } // namespace table

@@ -8,6 +8,7 @@
 // of steps), and the ARKode wrapper re-ran the Jacobian set-up before every linear solve
 // (150 film evaluations per step on this problem).
 #include <sealfe/dynamics/stator_transient.h>
+#include <sealfe/io/interrupt.h>
 
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
@@ -197,6 +198,14 @@ StatorTransient::Result StatorTransient::run() const
   auto last_report = std::chrono::steady_clock::now();
   for (unsigned long k = 1; k <= rows; ++k)
   {
+    if (interrupt::requested())
+    {
+      // between output rows: the rows so far are whole, and kept
+      std::ostringstream s;
+      s << interrupt::reason() << " at t = " << t_reached << " s";
+      result.stop_reason = s.str();
+      break;
+    }
     const double t_out = std::min(settings.end_time, k * settings.output_interval);
     realtype t_ret = t_reached;
     int flag = IDA_SUCCESS;

@@ -6,6 +6,7 @@
 #include <sealfe/dynamics/transient_study.h>
 #include <sealfe/film/cavitation.h>
 #include <sealfe/film/film_output.h>
+#include <sealfe/io/interrupt.h>
 #include <sealfe/io/output.h>
 #include <sealfe/io/python_plot.h>
 #include <sealfe/numerics/number_lists.h>
@@ -411,7 +412,13 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
           t, write_film_fields(fe->reynolds(), dir, "transient_fields", field_records.size()));
     };
   }
-  const StatorTransient::Result result = transient.run();
+  // SIGINT / SIGTERM stop the integration after the current output row: the rows so far are
+  // published as an incomplete run
+  const StatorTransient::Result result = [&]
+  {
+    const interrupt::StopOnSignal stop_on_signal;
+    return transient.run();
+  }();
   output::make_directory(dir);
   if (!field_records.empty())
   {

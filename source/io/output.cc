@@ -1,5 +1,7 @@
 #include <sealfe/io/output.h>
 
+#include <sealfe/io/interrupt.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -100,6 +102,8 @@ StagedOutput::~StagedOutput()
 
 void StagedOutput::publish()
 {
+  // A signal now would leave a directory without summary.json: it waits for the last rename.
+  const interrupt::HoldSignals hold;
   std::vector<fs::path> files;
   for (const auto &entry : fs::directory_iterator(staging))
     files.push_back(entry.path());

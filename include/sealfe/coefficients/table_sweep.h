@@ -39,7 +39,10 @@ struct SweepPlan
 /// held-out points) on top of Geometry, Operating conditions (the base point) and the
 /// coefficient solver's subsections. Every rank solves its share of the points with
 /// MPI_COMM_SELF; rank 0 gathers the rows and writes the CSV. A failing point gets status
-/// "failed: <why>" in its row and a line on stderr; the rest of the table is kept.
+/// "failed: <why>" in its row and a line on stderr; the rest of the table is kept. SIGINT/SIGTERM
+/// stop the sweep after the current round of points (all ranks together): the finished rows are
+/// published with summary.json "complete": false, and `Resume = true` computes only the rest
+/// (table_resume.h).
 namespace table
 {
 void declare_parameters(dealii::ParameterHandler &prm);

@@ -175,7 +175,8 @@ public:
     unsigned long error_test_failures = 0, convergence_failures = 0, jacobian_setups = 0;
   };
   /// Integrates from the initial state to the end time. A failure of the integrator (step size
-  /// collapse, film out of range) stops the run: the samples so far are kept, complete = false.
+  /// collapse, film out of range), or a stop asked for by a signal (interrupt::requested(),
+  /// checked before each output row), stops the run: the samples so far are kept, complete = false.
   Result run() const;
 
   /// Called with each output time right after its row is sampled (the film has just been

@@ -48,7 +48,8 @@ public:
   const std::string &path() const { return staging; }
 
   /// Moves every staged file into the output directory: the previous summary.json is removed
-  /// first, then the files are renamed, used_parameters.prm and summary.json last.
+  /// first, then the files are renamed, used_parameters.prm and summary.json last. SIGINT and
+  /// SIGTERM are held meanwhile (interrupt::HoldSignals).
   void publish();
 
 private:
