@@ -442,7 +442,10 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
     // coefficients are linear functionals of the perturbed pressure, which converges like p.
     const std::optional<FilmLoads> coarsest_loads =
         coarsest ? std::optional<FilmLoads>(coarsest->first) : std::nullopt;
-    r.load_estimate = grid_convergence_of_loads(solver.settings, r.degree, r.loads, coarse_loads,
+    FilmSettings point = solver.settings;
+    point.geometry = film;
+    point.conditions = conditions;
+    r.load_estimate = grid_convergence_of_loads(point, r.degree, r.loads, coarse_loads,
                                                 coarsest_loads, why_two_mesh);
     for (const auto &[name, member] : load_members())
       r.load_error.*member = r.load_estimate[name].get<double>();
@@ -467,6 +470,7 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
               expected, floor, grid_convergence_noise * scale, why_two_mesh);
           error[i][j] = verdict[i][j].estimate;
           r.coefficients_asymptotic = r.coefficients_asymptotic && verdict[i][j].asymptotic;
+          r.coefficients_warning = r.coefficients_warning || deserves_warning(verdict[i][j], scale);
         };
         entry(&FilmCoefficients::stiffness, r.stiffness_error, r.stiffness_convergence);
         entry(&FilmCoefficients::damping, r.damping_error, r.damping_convergence);

@@ -144,9 +144,9 @@ nlohmann::json grid_convergence_of_loads(const FilmSettings &settings, const uns
                          expected, floor.*q.member, grid_convergence_noise * q.scale, why_two_mesh);
     e[q.name] = g.estimate;
     details[q.name] = g.to_json();
-    if (!g.asymptotic)
+    all_asymptotic = all_asymptotic && g.asymptotic;
+    if (deserves_warning(g, q.scale))
     {
-      all_asymptotic = false;
       flagged += std::string(flagged.empty() ? "" : ", ") + q.name + " (" + g.convergence +
                  (std::isfinite(g.observed_order)
                       ? ", observed order " + std::to_string(g.observed_order).substr(0, 4)
@@ -157,7 +157,7 @@ nlohmann::json grid_convergence_of_loads(const FilmSettings &settings, const uns
   e["grid_convergence"] = details;
   e["asymptotic"] = all_asymptotic;
   e["expected_order"] = expected;
-  if (!all_asymptotic)
+  if (!flagged.empty())
     e["warning"] = "the error estimate of " + flagged +
                    " is not in the asymptotic range (expected "
                    "order " +

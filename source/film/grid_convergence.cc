@@ -31,6 +31,11 @@ nlohmann::json GridConvergence::to_json() const
   return j;
 }
 
+bool deserves_warning(const GridConvergence &verdict, const double scale)
+{
+  return !verdict.asymptotic && verdict.estimate > 1e-4 * scale;
+}
+
 double expected_load_order(const unsigned int degree, const bool cavitating)
 {
   return cavitating ? 1.0 : 2.0 * degree;
