@@ -7,8 +7,11 @@
 #include <sealfe/film/grid_convergence.h>
 #include <sealfe/film/reynolds_solver.h>
 
+#include <nlohmann/json.hpp>
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -68,8 +71,7 @@ TEST(GridConvergence, OrderBelowOrAboveTheExpectedIsFlaggedAndWidened)
     const double error = std::abs(s.fine - s.exact);
     EXPECT_GE(g.estimate, error) << p;
     // the GCI at the order used, exactly
-    EXPECT_NEAR(g.estimate,
-                3 * std::abs(s.fine - s.coarse) / (std::pow(2.0, g.order_used) - 1),
+    EXPECT_NEAR(g.estimate, 3 * std::abs(s.fine - s.coarse) / (std::pow(2.0, g.order_used) - 1),
                 1e-12 * g.estimate);
   }
 }
@@ -133,4 +135,131 @@ TEST(GridConvergence, ExpectedOrder)
   EXPECT_EQ(expected_load_order(2, false), 4.0);
   EXPECT_EQ(expected_load_order(1, false), 2.0);
   EXPECT_EQ(expected_load_order(2, true), 1.0);
+}
+
+namespace
+{
+/// summary.json of a solve of `s` (with its error estimate), as `sealfe solve` reports it.
+nlohmann::json solve_summary(const FilmSettings &s)
+{
+  ReynoldsSolver solver(s, MPI_COMM_WORLD);
+  const FilmLoads loads = solver.run();
+  return finite_element_solve_summary(s, solver, loads, MPI_COMM_WORLD);
+}
+
+FilmLoads solve_loads(FilmSettings s, unsigned int degree, unsigned int nr)
+{
+  s.polynomial_degree = degree;
+  s.mesh.radial_cells = nr;
+  s.mesh.circumferential_cells = 16 * nr;
+  s.estimate_error = false;
+  ReynoldsSolver solver(s, MPI_COMM_WORLD);
+  return solver.run();
+}
+
+const std::pair<const char *, double FilmLoads::*> headline_loads[] = {
+    {"force_z", &FilmLoads::force_z},
+    {"moment_x", &FilmLoads::moment_x},
+    {"moment_y", &FilmLoads::moment_y},
+    {"leakage_inner", &FilmLoads::leakage_inner},
+    {"friction_torque", &FilmLoads::friction_torque},
+    {"cavitated_fraction", &FilmLoads::cavitated_fraction}};
+
+/// |q_h - q_exact| <= estimate for every headline load, where q_exact is estimated from the
+/// reference as q_ref + (q_ref - q_h) / (ratio^p - 1) (the reference `ratio` times finer, the
+/// quantity converging at order p): the reference's own error counts against the estimate.
+void expect_bounds(const nlohmann::json &summary, const FilmLoads &fine, const FilmLoads &reference,
+                   double ratio, double p)
+{
+  const double factor = std::pow(ratio, p) / (std::pow(ratio, p) - 1);
+  for (const auto &[name, member] : headline_loads)
+  {
+    const double error = factor * std::abs(fine.*member - reference.*member);
+    const double estimate = summary["error_estimate"][name];
+    const auto &g = summary["error_estimate"]["grid_convergence"][name];
+    std::cout << name << ": value " << fine.*member << ", error " << error << ", estimate "
+              << estimate << " (two-mesh " << g["two_mesh_estimate"] << ", "
+              << g["convergence"].get<std::string>() << ", observed order " << g["observed_order"]
+              << ")\n";
+    // 1e-9 relative: the reference's own accuracy where the loads agree to round-off
+    EXPECT_LE(error, estimate + 1e-9 * std::abs(reference.*member)) << name;
+    EXPECT_GE(estimate, g["two_mesh_estimate"].get<double>()) << name;
+  }
+}
+} // namespace
+
+// Full film (default seal, tilt ε = 0.5, degree 2, 8 x 128): every load's estimate bounds its
+// error against a degree-4 solve on 16 x 256 cells (error ~ (h/2)^8 of it: negligible).
+TEST(ErrorEstimateBound, FullFilmAgainstAFineDegree4Solve)
+{
+  FilmSettings s;
+  s.geometry.tilt = 0.5 * s.geometry.clearance / s.geometry.outer_radius;
+  s.geometry.tilt_angle = 0.3;
+  const nlohmann::json summary = solve_summary(s);
+  ASSERT_TRUE(summary["error_estimate"]["available"].get<bool>());
+  EXPECT_EQ(summary["error_estimate"]["expected_order"].get<double>(), 4.0);
+  EXPECT_EQ(summary["error_estimate"]["coarser_dofs"].size(), 2u);
+  expect_bounds(summary, solve_loads(s, 2, 8), solve_loads(s, 4, 16), 1e300, 1);
+}
+
+// JFO on a flat face tilted to ε = 0.9 (a cavity over ~3/4 of the dam), degree 2 on 4 x 64 cells
+// (4h: 1 x 16): every estimate bounds the error against 32 x 512 cells (8x finer; its own error
+// counted at the expected order 1 of a cavitating film).
+TEST(ErrorEstimateBound, CavitatingJFOAgainstAnEightTimesFinerMesh)
+{
+  FilmSettings s;
+  s.geometry.coning = 0;
+  s.geometry.tilt = 0.9 * s.geometry.clearance / s.geometry.outer_radius;
+  s.cavitation.model = Cavitation::jfo;
+  s.mesh.radial_cells = 4;
+  s.mesh.circumferential_cells = 64;
+  const nlohmann::json summary = solve_summary(s);
+  ASSERT_TRUE(summary["error_estimate"]["available"].get<bool>());
+  EXPECT_EQ(summary["error_estimate"]["expected_order"].get<double>(), 1.0);
+  expect_bounds(summary, solve_loads(s, 2, 4), solve_loads(s, 2, 32), 8, 1);
+}
+
+// ε = 0.999 (JFO, flat face, 8 x 128): the film's thin region, |θ - ψ - π| < sqrt(2(1 - ε)/ε)
+// = 0.045 rad, is narrower than one cell (2π/128 = 0.049 rad), so the meshes h, 2h, 4h cannot be
+// in the asymptotic range: the force must be flagged, with a warning naming it on stderr.
+TEST(ErrorEstimateBound, UnresolvedFilmIsFlaggedAndWarned)
+{
+  FilmSettings s;
+  s.geometry.coning = 0;
+  s.geometry.tilt = 0.999 * s.geometry.clearance / s.geometry.outer_radius;
+  s.cavitation.model = Cavitation::jfo;
+  ::testing::internal::CaptureStderr();
+  const nlohmann::json summary = solve_summary(s);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  const auto &e = summary["error_estimate"];
+  const auto &force = e["grid_convergence"]["force_z"];
+  EXPECT_FALSE(force["asymptotic"].get<bool>());
+  EXPECT_FALSE(e["asymptotic"].get<bool>());
+  EXPECT_NE(force["convergence"].get<std::string>(), "asymptotic");
+  EXPECT_EQ(force["safety_factor"].get<double>(), 3.0);
+  EXPECT_GT(e["force_z"].get<double>(), force["two_mesh_estimate"].get<double>());
+  EXPECT_NE(err.find("sealfe: warning: the error estimate of force_z"), std::string::npos) << err;
+  for (const char *key : {"estimate", "asymptotic", "observed_order", "expected_order",
+                          "convergence", "two_mesh_estimate", "safety_factor", "reason"})
+    EXPECT_TRUE(force.contains(key)) << key;
+}
+
+// A mesh that can be halved once but not twice (2 x 32 cells: 1 x 16, then 0.5 radial cells): the
+// two-mesh fallback, flagged, with the reason.
+TEST(ErrorEstimateBound, TwoMeshFallbackWhenTheMeshCannotBeCoarsenedTwice)
+{
+  FilmSettings s;
+  s.geometry.tilt = 0.5 * s.geometry.clearance / s.geometry.outer_radius;
+  s.mesh.radial_cells = 2;
+  s.mesh.circumferential_cells = 32;
+  const nlohmann::json summary = solve_summary(s);
+  const auto &e = summary["error_estimate"];
+  ASSERT_TRUE(e["available"].get<bool>());
+  EXPECT_EQ(e["coarser_dofs"].size(), 1u);
+  const auto &force = e["grid_convergence"]["force_z"];
+  EXPECT_EQ(force["convergence"].get<std::string>(), "two-mesh");
+  EXPECT_FALSE(force["asymptotic"].get<bool>());
+  EXPECT_TRUE(force["observed_order"].is_null());
+  EXPECT_NE(force["reason"].get<std::string>().find("cannot be coarsened twice"),
+            std::string::npos);
 }

@@ -57,7 +57,8 @@ double expected_load_order(unsigned int degree, bool cavitating);
 /// Relative size of differences treated as round-off (of the quantity's scale).
 constexpr double grid_convergence_noise = 1e-9;
 
-/// Whether a verdict deserves a warning on stderr: not asymptotic, and its (widened) estimate
+/// Whether a verdict deserves a warning on stderr: not asymptotic, not merely faster than
+/// expected (then Fs = 3 at the expected order is conservative), and its (widened) estimate
 /// above 1e-4 of the quantity's scale. Below that, even an estimate ten times too small leaves
 /// the result within 0.1 %: the flag stays in summary.json, the warning would be noise (the
 /// default seal's friction torque: 4h mesh of 2 x 32 cells pre-asymptotic, estimate 3.5e-5).
