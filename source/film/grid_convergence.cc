@@ -36,7 +36,7 @@ bool deserves_warning(const GridConvergence &verdict, const double scale)
   // Faster than expected: the estimate at the expected order with Fs = 3 is conservative.
   const bool faster =
       verdict.convergence == "non-asymptotic" && verdict.observed_order > verdict.expected_order;
-  return !verdict.asymptotic && !faster && verdict.estimate > 1e-4 * scale;
+  return !verdict.asymptotic && !faster && verdict.estimate > 1e-3 * scale;
 }
 
 double expected_load_order(const unsigned int degree, const bool cavitating)

@@ -76,7 +76,7 @@ struct CoefficientResult
   FilmCoefficients::Matrix3 stiffness_error{}, damping_error{};
   std::array<std::array<GridConvergence, 3>, 3> stiffness_convergence{}, damping_convergence{};
   bool coefficients_asymptotic = false; ///< every entry of K and D in the asymptotic range
-  bool coefficients_warning = false;    ///< an entry is not, by more than 1e-4 of its scale
+  bool coefficients_warning = false;    ///< an entry deserves_warning (grid_convergence.h)
   FilmLoads load_error;
   nlohmann::json load_estimate; ///< grid_convergence_of_loads (film_summary.h)
   dealii::types::global_dof_index coarse_dofs = 0;
