@@ -87,8 +87,12 @@ GridConvergence grid_convergence(const double fine, const double coarse,
       g.observed_order = small21 || small32 ? std::numeric_limits<double>::quiet_NaN()
                                             : std::log2(std::abs(e32) / std::abs(e21));
       estimate = gci(3, 0.5, std::max(std::abs(e21), std::abs(e32)));
-      g.reason = "the differences between the meshes change sign (q_h - q_2h = " + number(e21) +
-                 ", q_2h - q_4h = " + number(e32) + "): 3 x the larger one at order 0.5";
+      g.reason = std::string(small21 || small32 ? "one difference between the meshes is at "
+                                                  "round-off and the other is not"
+                                                : "the differences between the meshes change "
+                                                  "sign") +
+                 " (q_h - q_2h = " + number(e21) + ", q_2h - q_4h = " + number(e32) +
+                 "): 3 x the larger one at order 0.5";
     }
     else
     {
