@@ -81,6 +81,14 @@ nlohmann::json run(ParameterHandler &prm, const std::string &, MPI_Comm comm)
     if (!r.has_error_estimate && film_settings.estimate_error)
       std::cerr << "sealfe: warning: no error estimate: " << r.no_error_estimate_reason
                 << std::endl;
+    if (r.has_error_estimate && r.load_estimate.contains("warning"))
+      std::cerr << "sealfe: warning: " << r.load_estimate["warning"].get<std::string>()
+                << std::endl;
+    if (r.has_error_estimate && r.coefficients_warning)
+      std::cerr << "sealfe: warning: the error estimate of some stiffness or damping entries is "
+                   "not in the asymptotic range (error_estimate/coefficients_grid_convergence): "
+                   "it is widened (Fs = 3) and may not bound the error; refine the mesh"
+                << std::endl;
   }
   return summary;
 }

@@ -1,5 +1,6 @@
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/film/film_summary.h>
+#include <sealfe/film/grid_convergence.h>
 #include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
@@ -8,8 +9,10 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -194,6 +197,30 @@ std::string linearization_note(const CoefficientSettings::Method method,
   return "linearisation of the solver's cavitation model (ReynoldsSolver::linearized_loads)";
 }
 
+/// The loads that get an error estimate, by their summary.json names.
+const std::vector<std::pair<const char *, double FilmLoads::*>> &load_members()
+{
+  static const std::vector<std::pair<const char *, double FilmLoads::*>> m = {
+      {"force_z", &FilmLoads::force_z},
+      {"moment_x", &FilmLoads::moment_x},
+      {"moment_y", &FilmLoads::moment_y},
+      {"moment_restoring", &FilmLoads::moment_restoring},
+      {"moment_transverse", &FilmLoads::moment_transverse},
+      {"leakage_inner", &FilmLoads::leakage_inner},
+      {"leakage_outer", &FilmLoads::leakage_outer},
+      {"friction_torque", &FilmLoads::friction_torque},
+      {"cavitated_fraction", &FilmLoads::cavitated_fraction}};
+  return m;
+}
+
+nlohmann::json verdict_rows(const std::array<std::array<GridConvergence, 3>, 3> &m)
+{
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto &row : m)
+    a.push_back({row[0].to_json(), row[1].to_json(), row[2].to_json()});
+  return a;
+}
+
 nlohmann::json rows(const Matrix3 &m)
 {
   nlohmann::json a = nlohmann::json::array();
@@ -234,9 +261,19 @@ nlohmann::json CoefficientResult::to_json() const
       e.erase(k);
     e["stiffness"] = rows(stiffness_error);
     e["damping"] = rows(damping_error);
-    e["method"] = "difference to a 2x coarser mesh / (2^k - 1)";
+    for (const char *k : {"grid_convergence", "asymptotic", "expected_order", "warning"})
+      if (load_estimate.contains(k))
+        e[k] = load_estimate[k];
+    e["coefficients_asymptotic"] = coefficients_asymptotic;
+    e["coefficients_grid_convergence"] = {{"stiffness", verdict_rows(stiffness_convergence)},
+                                          {"damping", verdict_rows(damping_convergence)}};
+    e["method"] = "grid convergence index of the computations on the 2x and 4x coarser meshes "
+                  "(observed order, Fs = 1.25 asymptotic, 3 otherwise), at least the difference "
+                  "to the 2x coarser mesh / (2^k - 1)";
     e["available"] = true;
     e["coarse_dofs"] = coarse_dofs;
+    e["coarser_dofs"] = coarsest_dofs > 0 ? nlohmann::json::array({coarse_dofs, coarsest_dofs})
+                                          : nlohmann::json::array({coarse_dofs});
     j["error_estimate"] = e;
   }
   else
@@ -353,16 +390,32 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
   if (settings.method == CoefficientSettings::Method::finite_difference)
     r.steps = settings.steps(film, conditions);
 
-  // The coarse mesh first, so that the solver ends holding the fine solution.
+  // The coarse meshes first, so that the solver ends holding the fine solution.
   FilmLoads coarse_loads;
   FilmCoefficients coarse;
+  std::optional<std::pair<FilmLoads, FilmCoefficients>> coarsest;
   r.no_error_estimate_reason = error_estimate_unavailable(solver);
   r.has_error_estimate = r.no_error_estimate_reason.empty();
+  std::string why_two_mesh;
   if (r.has_error_estimate)
   {
     const auto start = std::chrono::steady_clock::now();
     double t_solve, t_coefficients;
-    // The estimate's failure does not cost the fine result: it is reported unavailable.
+    // The estimate's failure does not cost the fine result: it is reported unavailable (or, for
+    // the 4x coarser mesh, two-mesh).
+    why_two_mesh = third_mesh_unavailable(solver);
+    if (why_two_mesh.empty())
+    {
+      try
+      {
+        coarsest = compute_on_mesh(film, conditions, 2, t_solve, t_coefficients);
+        r.coarsest_dofs = solver.n_dofs();
+      }
+      catch (std::exception &e)
+      {
+        why_two_mesh = std::string("the solve on the 4x coarser mesh failed: ") + e.what();
+      }
+    }
     try
     {
       std::tie(coarse_loads, coarse) =
@@ -385,17 +438,43 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
 
   if (r.has_error_estimate)
   {
-    // The same estimate as the loads of `sealfe solve` (h^k, estimate_load_errors): the
+    // The same three-mesh rule as the loads of `sealfe solve` (grid_convergence_of_loads): the
     // coefficients are linear functionals of the perturbed pressure, which converges like p.
+    const std::optional<FilmLoads> coarsest_loads =
+        coarsest ? std::optional<FilmLoads>(coarsest->first) : std::nullopt;
+    FilmSettings point = solver.settings;
+    point.geometry = film;
+    point.conditions = conditions;
+    r.load_estimate = grid_convergence_of_loads(point, r.degree, r.loads, coarse_loads,
+                                                coarsest_loads, why_two_mesh);
+    for (const auto &[name, member] : load_members())
+      r.load_error.*member = r.load_estimate[name].get<double>();
+    const double expected = r.load_estimate["expected_order"];
+    r.coefficients_asymptotic = true;
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
       {
-        r.stiffness_error[i][j] =
-            richardson_error(r.coefficients.stiffness[i][j], coarse.stiffness[i][j], r.degree);
-        r.damping_error[i][j] =
-            richardson_error(r.coefficients.damping[i][j], coarse.damping[i][j], r.degree);
+        // Entries of different units: the scale of (i, j) is sqrt(|X_ii X_jj|) of the fine
+        // matrix (and its own size), below which differences are round-off.
+        auto entry = [&](const FilmCoefficients::Matrix3 FilmCoefficients::*m,
+                         FilmCoefficients::Matrix3 &error,
+                         std::array<std::array<GridConvergence, 3>, 3> &verdict)
+        {
+          const auto &X = r.coefficients.*m;
+          const double scale = std::max({std::sqrt(std::abs(X[i][i] * X[j][j])), std::abs(X[i][j]),
+                                         std::numeric_limits<double>::min()});
+          const double floor = richardson_error(X[i][j], (coarse.*m)[i][j], r.degree);
+          verdict[i][j] = grid_convergence(
+              X[i][j], (coarse.*m)[i][j],
+              coarsest ? std::optional<double>((coarsest->second.*m)[i][j]) : std::nullopt,
+              expected, floor, grid_convergence_noise * scale, why_two_mesh);
+          error[i][j] = verdict[i][j].estimate;
+          r.coefficients_asymptotic = r.coefficients_asymptotic && verdict[i][j].asymptotic;
+          r.coefficients_warning = r.coefficients_warning || deserves_warning(verdict[i][j], scale);
+        };
+        entry(&FilmCoefficients::stiffness, r.stiffness_error, r.stiffness_convergence);
+        entry(&FilmCoefficients::damping, r.damping_error, r.damping_convergence);
       }
-    r.load_error = estimate_load_errors(r.loads, coarse_loads, r.degree);
   }
   return r;
 }

@@ -1,4 +1,5 @@
 #include <sealfe/film/film_summary.h>
+#include <sealfe/film/grid_convergence.h>
 #include <sealfe/film/round_off.h>
 
 #include <deal.II/base/mpi.h>
@@ -8,13 +9,16 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace sealfe
 {
 namespace
 {
-/// Error estimate of the loads from a second solve on a mesh twice as coarse.
+/// Error estimate of the loads from solves on meshes twice and four times as coarse
+/// (grid_convergence.h); the 4x coarser one is skipped (two-mesh estimate, flagged) when the mesh
+/// cannot be coarsened twice or its solve fails.
 nlohmann::json load_error_estimate(const FilmSettings &settings, const ReynoldsSolver &solver,
                                    const FilmLoads &loads, MPI_Comm comm, nlohmann::json &timings)
 {
@@ -26,8 +30,15 @@ nlohmann::json load_error_estimate(const FilmSettings &settings, const ReynoldsS
       std::cerr << "sealfe: warning: no error estimate: " << unavailable << std::endl;
     return {{"method", "none: " + unavailable}, {"available", false}};
   }
-  // A copy of the whole settings, on the mesh twice as coarse. Its failure does not cost the
-  // converged fine result: the estimate is reported unavailable, with the reason.
+  // Copies of the whole settings, on the meshes twice and four times as coarse. A failure does
+  // not cost the converged fine result: the estimate is reported unavailable (or two-mesh), with
+  // the reason.
+  double time = 0;
+  auto add_time = [&](const ReynoldsSolver &s)
+  {
+    for (const auto &[k, v] : s.stage_times())
+      time += v;
+  };
   ReynoldsSolver coarse(settings, comm);
   FilmLoads c;
   try
@@ -42,25 +53,120 @@ nlohmann::json load_error_estimate(const FilmSettings &settings, const ReynoldsS
       std::cerr << "sealfe: warning: no error estimate: " << reason << std::endl;
     return {{"method", "none: " + reason}, {"available", false}};
   }
-  const FilmLoads e = estimate_load_errors(loads, c, solver.degree());
-  double time = 0;
-  for (const auto &[k, v] : coarse.stage_times())
-    time += v;
+  add_time(coarse);
+  std::optional<FilmLoads> cc;
+  std::string why_two_mesh = third_mesh_unavailable(solver);
+  dealii::types::global_dof_index coarsest_dofs = 0;
+  if (why_two_mesh.empty())
+  {
+    ReynoldsSolver coarsest(settings, comm);
+    try
+    {
+      cc = coarsest.run(2);
+      coarsest_dofs = coarsest.n_dofs();
+    }
+    catch (std::exception &x)
+    {
+      why_two_mesh = std::string("the solve on the 4x coarser mesh failed: ") + x.what();
+    }
+    add_time(coarsest);
+  }
   timings["error_estimate"] = time;
-  return {{"force_z", e.force_z},
-          {"moment_x", e.moment_x},
-          {"moment_y", e.moment_y},
-          {"moment_restoring", e.moment_restoring},
-          {"moment_transverse", e.moment_transverse},
-          {"leakage_inner", e.leakage_inner},
-          {"leakage_outer", e.leakage_outer},
-          {"friction_torque", e.friction_torque},
-          {"cavitated_fraction", e.cavitated_fraction},
-          {"method", "difference to a 2x coarser mesh / (2^k - 1)"},
-          {"available", true},
-          {"coarse_dofs", coarse.n_dofs()}};
+  nlohmann::json e =
+      grid_convergence_of_loads(settings, solver.degree(), loads, c, cc, why_two_mesh);
+  e["method"] = "grid convergence index of the solves on the 2x and 4x coarser meshes "
+                "(observed order, Fs = 1.25 asymptotic, 3 otherwise), at least the difference to "
+                "the 2x coarser mesh / (2^k - 1)";
+  e["available"] = true;
+  e["coarse_dofs"] = coarse.n_dofs();
+  e["coarser_dofs"] = cc ? nlohmann::json::array({coarse.n_dofs(), coarsest_dofs})
+                         : nlohmann::json::array({coarse.n_dofs()});
+  if (root && e.contains("warning"))
+    std::cerr << "sealfe: warning: " << e["warning"].get<std::string>() << std::endl;
+  return e;
 }
 } // namespace
+
+std::string third_mesh_unavailable(const ReynoldsSolver &solver)
+{
+  const AnnulusMesh &mesh = solver.mesh();
+  if (mesh.can_coarsen(2))
+    return "";
+  if (!mesh.mesh_file.empty())
+    return "the mesh from the Mesh file '" + mesh.mesh_file + "' cannot be coarsened twice";
+  return "the mesh of " + std::to_string(mesh.radial_cells) + " x " +
+         std::to_string(mesh.circumferential_cells) +
+         " cells cannot be coarsened twice (cell counts divisible by 4 and at least 12 "
+         "circumferential cells are needed)";
+}
+
+nlohmann::json grid_convergence_of_loads(const FilmSettings &settings, const unsigned int degree,
+                                         const FilmLoads &fine, const FilmLoads &coarse,
+                                         const std::optional<FilmLoads> &coarsest,
+                                         const std::string &why_two_mesh)
+{
+  const FilmLoads floor = estimate_load_errors(fine, coarse, degree);
+  double cavitated = std::max(fine.cavitated_fraction, coarse.cavitated_fraction);
+  if (coarsest)
+    cavitated = std::max(cavitated, coarsest->cavitated_fraction);
+  const bool cavitating = settings.cavitation.model != Cavitation::none && cavitated > 0;
+  const double expected = expected_load_order(degree, cavitating);
+  // Scales of each kind of quantity, below which differences are round-off.
+  const double force_scale =
+      std::max({std::abs(fine.force_z),
+                std::max(std::abs(fine.max_pressure), std::abs(fine.min_pressure)) * fine.area,
+                std::numeric_limits<double>::min()});
+  const double moment_scale = force_scale * settings.geometry.outer_radius;
+  const double flow_scale = mass_balance_flow_scale(settings.geometry, settings.conditions, fine);
+  const double friction_scale =
+      std::max(std::abs(fine.friction_torque), moment_scale * settings.geometry.clearance);
+  struct Quantity
+  {
+    const char *name;
+    double FilmLoads::*member;
+    double scale;
+  };
+  const Quantity quantities[] = {{"force_z", &FilmLoads::force_z, force_scale},
+                                 {"moment_x", &FilmLoads::moment_x, moment_scale},
+                                 {"moment_y", &FilmLoads::moment_y, moment_scale},
+                                 {"moment_restoring", &FilmLoads::moment_restoring, moment_scale},
+                                 {"moment_transverse", &FilmLoads::moment_transverse, moment_scale},
+                                 {"leakage_inner", &FilmLoads::leakage_inner, flow_scale},
+                                 {"leakage_outer", &FilmLoads::leakage_outer, flow_scale},
+                                 {"friction_torque", &FilmLoads::friction_torque, friction_scale},
+                                 {"cavitated_fraction", &FilmLoads::cavitated_fraction, 1.0}};
+  nlohmann::json e, details;
+  std::string flagged;
+  bool all_asymptotic = true;
+  for (const Quantity &q : quantities)
+  {
+    const GridConvergence g =
+        grid_convergence(fine.*q.member, coarse.*q.member,
+                         coarsest ? std::optional<double>((*coarsest).*q.member) : std::nullopt,
+                         expected, floor.*q.member, grid_convergence_noise * q.scale, why_two_mesh);
+    e[q.name] = g.estimate;
+    details[q.name] = g.to_json();
+    all_asymptotic = all_asymptotic && g.asymptotic;
+    if (deserves_warning(g, q.scale))
+    {
+      flagged += std::string(flagged.empty() ? "" : ", ") + q.name + " (" + g.convergence +
+                 (std::isfinite(g.observed_order)
+                      ? ", observed order " + std::to_string(g.observed_order).substr(0, 4)
+                      : std::string()) +
+                 ")";
+    }
+  }
+  e["grid_convergence"] = details;
+  e["asymptotic"] = all_asymptotic;
+  e["expected_order"] = expected;
+  if (!flagged.empty())
+    e["warning"] = "the error estimate of " + flagged +
+                   " is not in the asymptotic range (expected "
+                   "order " +
+                   std::to_string(static_cast<int>(expected)) +
+                   "): it is widened (Fs = 3) and may not bound the error; refine the mesh";
+  return e;
+}
 
 std::string error_estimate_unavailable(const ReynoldsSolver &solver)
 {

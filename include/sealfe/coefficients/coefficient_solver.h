@@ -6,6 +6,7 @@
 #include <sealfe/film/film_loads.h>
 #include <sealfe/film/film_settings.h>
 #include <sealfe/film/film_thickness.h>
+#include <sealfe/film/grid_convergence.h>
 #include <sealfe/film/operating_conditions.h>
 #include <sealfe/film/reynolds_solver.h>
 
@@ -14,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <functional>
 #include <string>
 #include <utility>
@@ -65,14 +67,20 @@ struct CoefficientResult
   FilmCoefficients coefficients; // level 2
   FilmLoads loads;               // of the operating point itself
 
-  /// Discretisation error estimate of every entry of K and D and of the loads: the difference to
-  /// the same computation on a mesh twice as coarse, divided by 2^k - 1 (richardson_error, the
-  /// same estimate as the loads of `sealfe solve`; why h^k: estimate_load_errors).
+  /// Discretisation error estimate of every entry of K and D and of the loads: the grid
+  /// convergence index of the same computation on meshes 2x and 4x as coarse (grid_convergence.h,
+  /// the same rule as the loads of `sealfe solve`), never below the earlier two-mesh figure
+  /// |X_h - X_2h| / (2^k - 1) (richardson_error).
   bool has_error_estimate = false;
   std::string no_error_estimate_reason; ///< why there is none (has_error_estimate false)
   FilmCoefficients::Matrix3 stiffness_error{}, damping_error{};
+  std::array<std::array<GridConvergence, 3>, 3> stiffness_convergence{}, damping_convergence{};
+  bool coefficients_asymptotic = false; ///< every entry of K and D in the asymptotic range
+  bool coefficients_warning = false;    ///< an entry deserves_warning (grid_convergence.h)
   FilmLoads load_error;
+  nlohmann::json load_estimate; ///< grid_convergence_of_loads (film_summary.h)
   dealii::types::global_dof_index coarse_dofs = 0;
+  dealii::types::global_dof_index coarsest_dofs = 0; ///< 0: no 4x coarser mesh
 
   CoefficientSettings::Method method = CoefficientSettings::Method::perturbation;
   CoefficientSettings::Steps steps{}; // finite difference only

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 
 namespace sealfe
@@ -17,13 +18,25 @@ namespace sealfe
 /// summary.json content of the solve `solver` (of `settings`) that gave `loads`: the loads, dofs,
 /// degree, iterations, the discrete mass balance, the nodal minimum pressure and the
 /// interpolation undershoot below p_cav (with pressure_undershoot_warning), "cavitation",
-/// "roughness", and
-/// "error_estimate": the loads' difference to a solve of the same settings on a mesh twice as
-/// coarse / (2^k - 1) (estimate_load_errors), if the solver's Error estimate is on and the mesh
-/// can be coarsened. "stage_wall_time" holds the solver's stage times and the estimate's.
+/// "roughness", and "error_estimate": the loads' grid convergence index from solves of the same
+/// settings on meshes twice and four times as coarse (grid_convergence_of_loads), if the
+/// solver's Error estimate is on and the mesh can be coarsened. "stage_wall_time" holds the
+/// solver's stage times and the estimate's.
 /// Why the solver's loads get no error estimate ("" if they do): the estimate is off, or the mesh
 /// cannot be coarsened (a mesh file without global refinements, odd or too few cells).
 std::string error_estimate_unavailable(const ReynoldsSolver &solver);
+/// Why there is no third (4x coarser) mesh for the estimate ("" if there is one).
+std::string third_mesh_unavailable(const ReynoldsSolver &solver);
+
+/// The error_estimate entries of the loads of a degree-k solve `fine` from the same solve on
+/// meshes 2x (`coarse`) and 4x (`coarsest`, if any; else `why_two_mesh`) as coarse: per load
+/// the estimate (grid_convergence) and under "grid_convergence" its verdict; "asymptotic" (every
+/// load), "expected_order" (2k, or 1 when a cavitation model has a cavity on any of the meshes),
+/// and "warning" naming the loads out of the asymptotic range, if any.
+nlohmann::json grid_convergence_of_loads(const FilmSettings &settings, unsigned int degree,
+                                         const FilmLoads &fine, const FilmLoads &coarse,
+                                         const std::optional<FilmLoads> &coarsest,
+                                         const std::string &why_two_mesh);
 
 /// The flow (m^3/s) the discrete mass balance is measured against: the largest of the Couette flow
 /// through a radial line of the dam, (|w_r| + |w_s|) C0 (ro^2 - ri^2) / 4, the flat-film
