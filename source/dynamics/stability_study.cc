@@ -1,5 +1,6 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
 #include <sealfe/dynamics/stability_study.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/numerics/number_lists.h>
 
 #include <cmath>
@@ -191,40 +192,42 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   }
 
   // growth rate along the swept speed
-  nlohmann::json files = nlohmann::json::array();
+  nlohmann::json files = nlohmann::json::array(), notes = nlohmann::json::object();
   {
     const std::string name = "stability_growth_rate.csv";
-    std::ofstream out(output_directory + "/" + name);
-    if (!out)
-      throw std::runtime_error("Stability: cannot write " + output_directory + "/" + name);
-    out << "# growth rate max Re(lambda) (1/s) of the least stable mode against the "
-        << (swept_rotor ? "rotor" : "stator") << " speed (rad/s); other ring at " << fixed
-        << " rad/s\n";
-    out << "swept_speed,rotor_speed,stator_speed,growth_rate,stable\n";
-    out.precision(10);
+    csv::Writer table({{"swept_speed", "rad/s"},
+                       {"rotor_speed", "rad/s"},
+                       {"stator_speed", "rad/s"},
+                       {"growth_rate", "1/s"},
+                       {"stable", csv::dimensionless}});
     for (unsigned int i = 0; i < sweep.n; ++i)
     {
       const double w = sweep.from + (sweep.to - sweep.from) * i / (sweep.n - 1);
       const double r = swept_rotor ? w : fixed, s = swept_rotor ? fixed : w;
-      out << w << "," << r << "," << s << "," << dynamics.growth_rate(r, s) << ","
-          << dynamics.is_stable(r, s) << "\n";
+      table.add_row({w, r, s, dynamics.growth_rate(r, s), dynamics.is_stable(r, s)});
     }
+    table.write(output_directory, name);
+    notes[name] = "growth rate max Re(lambda) of the least stable mode against the " +
+                  std::string(swept_rotor ? "rotor" : "stator") + " speed; the other ring at " +
+                  numerics::to_prm_string(fixed) + " rad/s; stable = 1: every mode decays";
     files.push_back(name);
   }
 
   if (second != "none")
   {
     const std::string name = "stability_sweep.csv";
-    std::ofstream out(output_directory + "/" + name);
-    if (!out)
-      throw std::runtime_error("Stability: cannot write " + output_directory + "/" + name);
-    out << "# stable range of the " << (swept_rotor ? "rotor" : "stator")
-        << " speed (rad/s) against " << second
-        << " (SI); range = the stable interval containing the operating speed, else the widest; "
-           "empty = no stable speed in the sweep\n";
-    out << "value,stable_low,stable_high,low_at_search_limit,high_at_search_limit,"
-           "stable_intervals\n";
-    out.precision(10);
+    csv::Writer csv_table(
+        {{SealDynamicsInput::parameter_column(second), SealDynamicsInput::parameter_unit(second)},
+         {"stable_low", "rad/s"},
+         {"stable_high", "rad/s"},
+         {"low_at_search_limit", csv::dimensionless},
+         {"high_at_search_limit", csv::dimensionless},
+         {"stable_interval_count", csv::dimensionless}});
+    notes[name] = "stable range [stable_low, stable_high] of the " +
+                  std::string(swept_rotor ? "rotor" : "stator") + " speed against " + second +
+                  ": the stable interval containing the operating speed, else the widest; empty "
+                  "fields: no stable speed in the sweep; *_at_search_limit = 1: that end is the "
+                  "edge of the sweep, not a threshold";
     nlohmann::json table = nlohmann::json::array();
     for (const double v : values)
     {
@@ -248,23 +251,18 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       bool ok = false;
       nlohmann::json lim;
       const nlohmann::json range = pick_range(iv, c, ok, lim);
-      auto bound = [&](const int k)
-      {
-        std::ostringstream b;
-        b.precision(10);
-        if (ok)
-          b << range[k].get<double>();
-        return b.str();
-      };
-      out << v << "," << bound(0) << "," << bound(1) << "," << (ok ? int(lim[0].get<bool>()) : 0)
-          << "," << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
+      auto bound = [&](const int k) { return ok ? csv::number(range[k].get<double>()) : ""; };
+      csv_table.add_row({v, bound(0), bound(1), ok && lim[0].get<bool>(), ok && lim[1].get<bool>(),
+                         static_cast<unsigned int>(iv.size())});
       table.push_back({{"value", v}, {"stable_range", range}});
     }
+    csv_table.write(output_directory, name);
     summary["second_parameter"] = second;
     summary["second_parameter_sweep"] = table;
     files.push_back(name);
   }
   summary["files"] = files;
+  summary["csv_notes"] = notes;
   return summary;
 }
 } // namespace stability
