@@ -687,7 +687,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   if (!c.sweep_lambdas.empty())
   {
     const std::string sweep_name = "annular_lambda_sweep.csv";
-    const fs::path csv = out / sweep_name;
+    const fs::path csv_path = out / sweep_name;
     {
       const std::string none = csv::dimensionless;
       csv::Writer f({{"lambda", none},
@@ -708,7 +708,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     sweep_file = sweep_name;
     const fs::path png = out / "annular_lambda_sweep.png";
     const PlotResult plot =
-        run_plot_script("plot_annular.py", {csv.string(), png.string()}, png.string());
+        run_plot_script("plot_annular.py", {csv_path.string(), png.string()}, png.string());
     plot_command = plot.command;
     if (plot.made)
       plot_file = png.filename().string();
