@@ -45,7 +45,7 @@ void print_headline(const nlohmann::json &s)
             << "  operating point        " << (s["stable"].get<bool>() ? "stable" : "unstable")
             << " (rotor " << s["rotor_speed"].get<double>() << ", stator "
             << s["stator_speed"].get<double>() << " rad/s)\n"
-            << "  stable " << ring << " speed " << std::string(ring == "rotor" ? 3 : 2, ' ');
+            << "  stable " << ring << " speed" << std::string(ring == "rotor" ? 6 : 5, ' ');
   if (s["stable_range"].is_null())
     std::cout << "none in the sweep [" << s["sweep"][0].get<double>() << ", "
               << s["sweep"][1].get<double>() << "] rad/s\n";
@@ -74,8 +74,10 @@ void print_headline(const nlohmann::json &s)
       least = i;
   if (!zeta.empty())
     std::cout << "  least damped mode      damping ratio " << zeta[least].get<double>()
-              << ", whirl " << s["eigenvalues"][least][1].get<double>() << " rad/s, growth rate "
+              << ", whirl " << s["eigenvalues"][least][1].get<double>() << " rad/s, Re(lambda) "
               << s["eigenvalues"][least][0].get<double>() << " 1/s\n";
+  std::cout << "  growth rate            " << s["growth_rate"].get<double>()
+            << " 1/s (largest Re(lambda); stable < 0)\n";
   if (s.contains("second_parameter"))
     std::cout << "  stable range against   " << s["second_parameter"].get<std::string>() << ": "
               << s["second_parameter_sweep"].size() << " values in stability_sweep.csv\n";
