@@ -1,7 +1,6 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
 
 #include <algorithm>
-#include <cctype>
 
 #include <cmath>
 #include <sstream>
@@ -259,40 +258,6 @@ std::string SealDynamicsInput::parameter_names()
          "Stator ring transverse inertia|Stator ring polar inertia|"
          "Stator ring support stiffness|Stator ring support damping|"
          "Stator ring rotating damping";
-}
-
-std::string SealDynamicsInput::parameter_unit(const std::string &name)
-{
-  auto ends = [&](const std::string &tail)
-  {
-    return name.size() >= tail.size() &&
-           name.compare(name.size() - tail.size(), tail.npos, tail) == 0;
-  };
-  if (name == "Clearance" || ends("radius"))
-    return "m";
-  if (name == "Coning")
-    return "rad";
-  if (ends("pressure"))
-    return "Pa";
-  if (name == "Viscosity")
-    return "Pa s";
-  if (ends("speed"))
-    return "rad/s";
-  if (ends("inertia"))
-    return "kg m^2";
-  if (ends("stiffness"))
-    return "N m/rad";
-  if (ends("damping"))
-    return "N m s/rad";
-  throw std::runtime_error("no unit for the parameter '" + name + "'");
-}
-
-std::string SealDynamicsInput::parameter_column(const std::string &name)
-{
-  std::string c;
-  for (const char ch : name)
-    c += ch == ' ' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return c;
 }
 
 void SealDynamicsInput::set(const std::string &name, const double value,

@@ -3,6 +3,7 @@
 #include <sealfe/io/csv.h>
 #include <sealfe/numerics/number_lists.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -55,6 +56,42 @@ struct Sweep
   unsigned int n;
   AngularSealDynamics::Criterion criterion;
 };
+
+/// SI unit of one of SealDynamicsInput::parameter_names() ("Clearance": "m"), for the CSV header.
+std::string parameter_unit(const std::string &name)
+{
+  auto ends = [&](const std::string &tail)
+  {
+    return name.size() >= tail.size() &&
+           name.compare(name.size() - tail.size(), tail.npos, tail) == 0;
+  };
+  if (name == "Clearance" || ends("radius"))
+    return "m";
+  if (name == "Coning")
+    return "rad";
+  if (ends("pressure"))
+    return "Pa";
+  if (name == "Viscosity")
+    return "Pa s";
+  if (ends("speed"))
+    return "rad/s";
+  if (ends("inertia"))
+    return "kg m^2";
+  if (ends("stiffness"))
+    return "N m/rad";
+  if (ends("damping"))
+    return "N m s/rad";
+  throw std::runtime_error("no unit for the parameter '" + name + "'");
+}
+
+/// Column name of one of SealDynamicsInput::parameter_names(): lower case, '_' for spaces.
+std::string parameter_column(const std::string &name)
+{
+  std::string c;
+  for (const char ch : name)
+    c += ch == ' ' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return c;
+}
 
 /// The stable interval that contains the swept ring's current speed, else the widest one.
 nlohmann::json pick_range(const std::vector<AngularSealDynamics::SpeedInterval> &intervals,
@@ -216,13 +253,12 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   if (second != "none")
   {
     const std::string name = "stability_sweep.csv";
-    csv::Writer csv_table(
-        {{SealDynamicsInput::parameter_column(second), SealDynamicsInput::parameter_unit(second)},
-         {"stable_low", "rad/s"},
-         {"stable_high", "rad/s"},
-         {"low_at_search_limit", csv::dimensionless},
-         {"high_at_search_limit", csv::dimensionless},
-         {"stable_interval_count", csv::dimensionless}});
+    csv::Writer csv_table({{parameter_column(second), parameter_unit(second)},
+                           {"stable_low", "rad/s"},
+                           {"stable_high", "rad/s"},
+                           {"low_at_search_limit", csv::dimensionless},
+                           {"high_at_search_limit", csv::dimensionless},
+                           {"stable_interval_count", csv::dimensionless}});
     notes[name] = "stable range [stable_low, stable_high] of the " +
                   std::string(swept_rotor ? "rotor" : "stator") + " speed against " + second +
                   ": the stable interval containing the operating speed, else the widest; empty "

@@ -65,7 +65,7 @@ std::string sanitize(const std::string &message);
 /// The axes are the OperatingPoint columns that take more than one value among the grid rows; the
 /// grid rows must form the full tensor product of the axis values (any spacing, any order).
 ///
-///   CoefficientTable table("sealfe-output/table/coefficients.csv");
+///   CoefficientTable table("sealfe-output/coefficients.csv");
 ///   FilmCoefficients k = table.coefficients(film, conditions);        // level 1
 ///   auto model = table.film_model(film, conditions);                  // seal_dynamics FilmModel
 ///

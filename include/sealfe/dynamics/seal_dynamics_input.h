@@ -79,10 +79,6 @@ struct SealDynamicsInput
   /// parameter_names(). "Clearance" keeps beta* ro/C0 if hold_normalized_coning.
   void set(const std::string &name, double value, bool hold_normalized_coning);
   static std::string parameter_names();
-  /// SI unit of one of parameter_names() ("Clearance": "m"), for the CSV header.
-  static std::string parameter_unit(const std::string &name);
-  /// Column name of one of parameter_names(): lower case, '_' for spaces.
-  static std::string parameter_column(const std::string &name);
 
 private:
   /// The level-1 table, read once (by film() or validate()) and shared by copies.
