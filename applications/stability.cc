@@ -45,7 +45,7 @@ void print_headline(const nlohmann::json &s)
             << "  operating point        " << (s["stable"].get<bool>() ? "stable" : "unstable")
             << " (rotor " << s["rotor_speed"].get<double>() << ", stator "
             << s["stator_speed"].get<double>() << " rad/s)\n"
-            << "  stable " << ring << " speed" << std::string(ring == "rotor" ? 6 : 5, ' ');
+            << "  stable " << ring << " speed" << std::string(ring == "rotor" ? 5 : 4, ' ');
   if (s["stable_range"].is_null())
     std::cout << "none in the sweep [" << s["sweep"][0].get<double>() << ", "
               << s["sweep"][1].get<double>() << "] rad/s\n";
