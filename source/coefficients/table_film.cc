@@ -11,8 +11,13 @@ TableFilm::TableFilm(std::shared_ptr<const CoefficientTable> table, const FilmTh
     : table_(std::move(table)), geometry(geometry_), operating(operating_),
       name(std::move(table_name))
 {
-  // film_model() checks that the seal is the table's (at the table's first speed nodes).
-  table_->film_model(geometry, operating);
+  // Fail now if the seal is not the table's: every quantity the table did not sweep must be the
+  // table's; the swept ones are set to their first node, since the transient moves the
+  // clearance (C0 + z), coning, tilt, speed and pressure away from the seal's nominal values.
+  OperatingPoint p = OperatingPoint::of(geometry, operating);
+  for (unsigned int a = 0; a < table_->axes().size(); ++a)
+    p.set(table_->axes()[a], table_->axis_values(a).front());
+  table_->coefficients(p);
 }
 
 std::string TableFilm::description() const
@@ -37,7 +42,9 @@ FilmLoads TableFilm::loads(const FilmState &state) const
   FilmThickness film = s.apply(geometry);
   film.clearance += film.axial_offset;
   film.axial_offset = 0;
-  const OperatingPoint point = OperatingPoint::of(film, s.apply(operating));
+  OperatingPoint point = OperatingPoint::of(film, s.apply(operating));
+  if (turn != 0.0)
+    point.tilt_angle = table_->constant_point().tilt_angle; // turned onto it, up to round-off
   FilmLoads l;
   const std::pair<const char *, double *> columns[] = {
       {"force_z", &l.force_z},

@@ -16,7 +16,17 @@
 
 namespace sealfe
 {
-using State = std::array<double, 8>; // Z, Z', a_sx, a_sy, a_sx', a_sy', beta, leaked volume
+using State = TransientState;
+using Vector2 = std::array<double, 2>;
+
+namespace
+{
+/// J v, the quarter turn counter-clockwise (the sense of the shaft's rotation)
+Vector2 quarter_turn(const Vector2 &v)
+{
+  return {{-v[1], v[0]}};
+}
+} // namespace
 
 // ------------------------------------------------------------------------------------------------
 // parameters
@@ -85,6 +95,75 @@ void RotorRunout::parse_parameters(dealii::ParameterHandler &prm)
 std::array<double, 2> RotorRunout::vector(const double shaft_angle) const
 {
   return tilt_vector(tilt, shaft_angle + phase);
+}
+
+void RotorRing::declare_parameters(dealii::ParameterHandler &prm)
+{
+  using namespace dealii::Patterns;
+  const RotorRing d;
+  prm.enter_subsection("Rotor ring");
+  prm.declare_entry("Model", "rigid", Selection("rigid|flexible"),
+                    "rigid: the rotor face tilts by the runout of `Rotor runout`, turning with the "
+                    "shaft (Green 2002). flexible: Varney & Green 2017 Eq. 5-6, the angular rotor "
+                    "on the shaft's stiffness, held at the runout tilt as its static misalignment "
+                    "chi_s (axially rigid).");
+  prm.declare_entry("Transverse inertia", std::to_string(d.transverse_inertia), Double(),
+                    "I_tr (kg m^2), > 0 (Varney & Green 2017 Table 2).");
+  prm.declare_entry("Polar inertia", std::to_string(d.polar_inertia), Double(0),
+                    "I_pr (kg m^2): gyroscopic coupling I_pr omega.");
+  prm.declare_entry("Angular stiffness", "5e5", Double(0), "K_r (N m/rad), the shaft's.");
+  prm.declare_entry("Angular damping", "20", Double(0), "D_r (N m s/rad), external damping.");
+  prm.declare_entry("Rotating damping", "1", Double(0),
+                    "D_omega_r (N m s/rad): damping that turns with the rotor (circulatory "
+                    "stiffness omega D_omega_r).");
+  prm.declare_entry("Dynamic misalignment", "0", Double(0),
+                    "chi (rad): principal axes against the spin axis; forces (I_tr - I_pr) chi "
+                    "omega^2 (Varney & Green 2017 Appendix A).");
+  prm.declare_entry("Axial stiffness", "0", Double(0),
+                    "K_zr (N/m) of Varney & Green 2017 Eq. 7: > 0 makes the flexible rotor's "
+                    "axial motion a state (the film gap is C0 + Z - u_zr); 0: axially rigid.");
+  prm.declare_entry("Axial damping", "0", Double(0), "D_zr (N s/m).");
+  prm.declare_entry("Mass", "1", Double(0), "m_r (kg), > 0 when Axial stiffness > 0.");
+  prm.leave_subsection();
+}
+
+void RotorRing::parse_parameters(dealii::ParameterHandler &prm)
+{
+  prm.enter_subsection("Rotor ring");
+  flexible = prm.get("Model") == "flexible";
+  transverse_inertia = prm.get_double("Transverse inertia");
+  polar_inertia = prm.get_double("Polar inertia");
+  angular_stiffness = prm.get_double("Angular stiffness");
+  angular_damping = prm.get_double("Angular damping");
+  rotating_damping = prm.get_double("Rotating damping");
+  dynamic_misalignment = prm.get_double("Dynamic misalignment");
+  axial_stiffness = prm.get_double("Axial stiffness");
+  axial_damping = prm.get_double("Axial damping");
+  mass = prm.get_double("Mass");
+  prm.leave_subsection();
+}
+
+void RotorRing::validate() const
+{
+  if (!flexible)
+    return;
+  std::ostringstream s;
+  if (!(transverse_inertia > 0) || !std::isfinite(transverse_inertia))
+    s << "Rotor ring: Transverse inertia must be > 0, got " << transverse_inertia << " kg m^2";
+  else
+    for (const double v : {polar_inertia, angular_stiffness, angular_damping, rotating_damping,
+                           dynamic_misalignment, axial_stiffness, axial_damping})
+      if (!(v >= 0) || !std::isfinite(v))
+      {
+        s << "Rotor ring: inertia, stiffness, damping and misalignment must be finite and >= 0, "
+             "got "
+          << v;
+        break;
+      }
+  if (s.str().empty() && axial_stiffness > 0 && !(mass > 0 && std::isfinite(mass)))
+    s << "Rotor ring: Mass must be > 0 with an Axial stiffness, got " << mass << " kg";
+  if (!s.str().empty())
+    throw std::runtime_error(s.str());
 }
 
 void TransientSettings::declare_parameters(dealii::ParameterHandler &prm)
@@ -176,6 +255,7 @@ void FlexibleStatorSeal::declare_parameters(dealii::ParameterHandler &prm)
   ClosingForce::declare_parameters(prm);
   StatorRing::declare_parameters(prm);
   RotorRunout::declare_parameters(prm);
+  RotorRing::declare_parameters(prm);
   ThermalConing::declare_parameters(prm);
   OperatingRamps::declare_parameters(prm);
   FaceContact::declare_parameters(prm);
@@ -197,6 +277,7 @@ void FlexibleStatorSeal::parse_parameters(dealii::ParameterHandler &prm)
   closing.parse_parameters(prm);
   stator.parse_parameters(prm);
   runout.parse_parameters(prm);
+  rotor.parse_parameters(prm);
   thermal.parse_parameters(prm);
   ramps.parse_parameters(prm);
   contact.parse_parameters(prm, geometry.inner_radius, geometry.outer_radius);
@@ -207,6 +288,7 @@ void FlexibleStatorSeal::validate() const
   conditions.validate();
   closing.validate();
   stator.validate();
+  rotor.validate();
   thermal.validate();
   ramps.validate();
   if (!(geometry.inner_radius > 0 && geometry.outer_radius > geometry.inner_radius &&
@@ -248,7 +330,8 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
   settings.validate();
   const double C0 = seal.geometry.clearance, ro = seal.geometry.outer_radius;
   const double rate = 1e3; // 1/s: velocities are scaled as displacements per ms
-  scale = {{C0, C0 * rate, C0 / ro, C0 / ro, C0 / ro * rate, C0 / ro * rate, C0 / ro, 1e-9}};
+  scale = {{C0, C0 * rate, C0 / ro, C0 / ro, C0 / ro * rate, C0 / ro * rate, C0 / ro, 1e-9, C0 / ro,
+            C0 / ro, C0 / ro * rate, C0 / ro * rate, C0, C0 * rate}};
   // the frame in which the forcing is steady: the rotor's runout is fixed in the rotating
   // frame, the stator's initial misalignment in the inertial one
   rotating = settings.frame == "rotating" ||
@@ -258,6 +341,16 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
 
 StatorTransient::Evaluation StatorTransient::evaluate(const double t, const State &y) const
 {
+  for (const double v : y)
+    if (!std::isfinite(v))
+      throw std::runtime_error("the state is not finite: the faces opened without bound or the "
+                               "integration diverged");
+  if (y[0] > 1e3 * seal.geometry.clearance)
+  {
+    std::ostringstream m;
+    m << "the faces opened without bound (Z = " << y[0] / seal.geometry.clearance << " C0)";
+    throw std::runtime_error(m.str());
+  }
   Evaluation e;
   const double omega = seal.ramps.speed.value(t);
   e.shaft_angle = seal.ramps.speed.integral(t);
@@ -268,8 +361,9 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   s.tilt_y = y[3];
   s.tilt_rate_x = rotating ? y[4] - omega * y[3] : y[4];
   s.tilt_rate_y = rotating ? y[5] + omega * y[2] : y[5];
-  s.axial_offset = y[0];
-  s.axial_velocity = y[1];
+  // the gap: stator Z less the rotor's axial displacement (0 unless the rotor is axially flexible)
+  s.axial_offset = y[0] - y[12];
+  s.axial_velocity = y[1] - y[13];
   s.rotor_speed = omega;
   s.stator_speed = 0;
   s.inner_pressure = seal.ramps.inner_pressure.value(t);
@@ -285,13 +379,39 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   e.heating_film = seal.thermal.film == ThermalConing::Film::minimum
                        ? std::max(e.contact.min_film, 0.1 * seal.contact.composite_roughness())
                    : seal.thermal.film == ThermalConing::Film::centerline
-                       ? seal.geometry.clearance + y[0]
+                       ? seal.geometry.clearance + y[0] - y[12]
                        : e.contact.heating_film;
   ++evaluations;
   e.film = film.loads(s);
   e.closing_force = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
                                        s.inner_pressure, s.outer_pressure);
   return e;
+}
+
+FilmState StatorTransient::film_state(const double t, const State &y) const
+{
+  return evaluate(t, y).state;
+}
+
+double StatorTransient::contact_margin(const double t, const State &y) const
+{
+  FilmState s;
+  s.tilt_x = y[2];
+  s.tilt_y = y[3];
+  s.axial_offset = y[0] - y[12];
+  s.rotor_speed = seal.ramps.speed.value(t);
+  s.inner_pressure = seal.ramps.inner_pressure.value(t);
+  s.outer_pressure = seal.ramps.outer_pressure.value(t);
+  s.time = t;
+  if (!seal.thermal.enabled())
+    s.coning = seal.geometry.coning;
+  else if (seal.thermal.time_constant > 0)
+    s.coning = y[6];
+  else
+    s.coning = quasi_static_coning(seal, s);
+  const double closing = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
+                                            s.inner_pressure, s.outer_pressure);
+  return seal.contact.loads(s.apply(seal.geometry)).force - settings.contact_threshold * closing;
 }
 
 std::array<double, 2> StatorTransient::rotor_tilt(const double shaft_angle) const
@@ -304,14 +424,70 @@ State StatorTransient::rate(const double t, const State &y) const
   const Evaluation e = evaluate(t, y);
   const StatorRing &ring = seal.stator;
   const double omega = e.state.rotor_speed, omega_rate = seal.ramps.speed.rate(t);
-  // the stator's initial misalignment g is fixed in space
-  std::array<double, 2> g = tilt_vector(ring.initial_misalignment, ring.misalignment_angle);
+  // the integration frame turns at w = omega (rotating) or stands still (inertial); a vector u
+  // given in it has the inertial rate u' + w J u and the inertial acceleration
+  // A = u'' + 2 w J u' + w' J u - w^2 u (all in frame components)
+  const double w = rotating ? omega : 0.0, w_rate = rotating ? omega_rate : 0.0;
+  auto inertial_rate = [&](const Vector2 &u, const Vector2 &du) {
+    return Vector2{{du[0] - w * u[1], du[1] + w * u[0]}};
+  };
+  auto frame_acceleration = [&](const Vector2 &A, const Vector2 &u, const Vector2 &du)
+  {
+    return Vector2{{A[0] + 2 * w * du[1] + w_rate * u[1] + w * w * u[0],
+                    A[1] - 2 * w * du[0] - w_rate * u[0] + w * w * u[1]}};
+  };
+  const Vector2 film_moment{
+      {e.film.moment_x + e.contact.moment_x, e.film.moment_y + e.contact.moment_y}};
+
+  // the rotor: its tilt r, frame rate dr and frame acceleration ddr
+  const Vector2 runout = rotor_tilt(e.shaft_angle);
+  Vector2 r, dr, ddr;
+  if (!seal.rotor.flexible)
+  {
+    // turning with the shaft: fixed in the rotating frame, r' = omega J r in the inertial one
+    r = runout;
+    const Vector2 Jr = quarter_turn(r);
+    dr = rotating ? Vector2{} : Vector2{{omega * Jr[0], omega * Jr[1]}};
+    ddr = rotating ? Vector2{}
+                   : Vector2{{omega_rate * Jr[0] - omega * omega * r[0],
+                              omega_rate * Jr[1] - omega * omega * r[1]}};
+  }
+  else
+  {
+    // Varney & Green 2017 Eq. 5-6: the film and contact moments act on the rotor with the
+    // opposite sign; the shaft holds it at the runout chi_s (turning with it)
+    const RotorRing &rotor = seal.rotor;
+    r = {{y[8], y[9]}};
+    dr = {{y[10], y[11]}};
+    const Vector2 v = inertial_rate(r, dr), Jv = quarter_turn(v), Jr = quarter_turn(r);
+    const Vector2 u = tilt_vector(1.0, (rotating ? 0.0 : e.shaft_angle) + seal.runout.phase),
+                  Ju = quarter_turn(u);
+    const double unbalance =
+        (rotor.transverse_inertia - rotor.polar_inertia) * rotor.dynamic_misalignment;
+    Vector2 A;
+    for (unsigned int i = 0; i < 2; ++i)
+      A[i] =
+          (-film_moment[i] + rotor.polar_inertia * omega * Jv[i] - rotor.angular_damping * v[i] -
+           rotor.angular_stiffness * (r[i] - runout[i]) + omega * rotor.rotating_damping * Jr[i] +
+           unbalance * (omega * omega * u[i] - omega_rate * Ju[i])) /
+          rotor.transverse_inertia;
+    ddr = frame_acceleration(A, r, dr);
+  }
+
+  // the stator: tilt a_s = a + r; its support acts on the inertial tilt and rate; the initial
+  // misalignment g is fixed in space
+  Vector2 g = tilt_vector(ring.initial_misalignment, ring.misalignment_angle);
   if (rotating)
     g = turned(g, -e.shaft_angle);
-  // stator tilt a_s = a + a_r and its inertial rate (the support damps that)
-  const std::array<double, 2> r = rotor_tilt(e.shaft_angle);
-  const double ax = y[2] + r[0], ay = y[3] + r[1];
-  const double vx = e.state.tilt_rate_x - omega * r[1], vy = e.state.tilt_rate_y + omega * r[0];
+  const Vector2 a_s{{y[2] + r[0], y[3] + r[1]}}, da_s{{y[4] + dr[0], y[5] + dr[1]}};
+  const Vector2 v_s = inertial_rate(a_s, da_s);
+  Vector2 A_s;
+  for (unsigned int i = 0; i < 2; ++i)
+    A_s[i] = (film_moment[i] - ring.angular_stiffness * (a_s[i] - g[i]) -
+              ring.angular_damping * v_s[i]) /
+             ring.transverse_inertia;
+  const Vector2 dda_s = frame_acceleration(A_s, a_s, da_s);
+
   State d{};
   d[0] = y[1];
   d[1] = (e.film.force_z + e.contact.force - e.closing_force - ring.axial_stiffness * y[0] -
@@ -319,30 +495,27 @@ State StatorTransient::rate(const double t, const State &y) const
          ring.mass;
   d[2] = y[4];
   d[3] = y[5];
-  // a_s'' (inertial) = moments / I
-  d[4] = (e.film.moment_x + e.contact.moment_x - ring.angular_stiffness * (ax - g[0]) -
-          ring.angular_damping * vx) /
-         ring.transverse_inertia;
-  d[5] = (e.film.moment_y + e.contact.moment_y - ring.angular_stiffness * (ay - g[1]) -
-          ring.angular_damping * vy) /
-         ring.transverse_inertia;
-  if (rotating)
-  {
-    // a_s = R(psi) b with b = a + b_r (b_r fixed): a'' = b'' = R^T a_s'' - 2 omega J b'
-    // - omega' J b + omega^2 b, J the quarter turn (J v = (-v_y, v_x))
-    d[4] += 2 * omega * y[5] + omega_rate * ay + omega * omega * ax;
-    d[5] += -2 * omega * y[4] - omega_rate * ax + omega * omega * ay;
-  }
-  else
-  {
-    // a = a_s - a_r with a_r turning at omega: a'' = a_s'' - omega' J a_r + omega^2 a_r
-    d[4] += omega_rate * r[1] + omega * omega * r[0];
-    d[5] += -omega_rate * r[0] + omega * omega * r[1];
-  }
+  d[4] = dda_s[0] - ddr[0];
+  d[5] = dda_s[1] - ddr[1];
   d[6] = (seal.thermal.enabled() && seal.thermal.time_constant > 0)
              ? seal.thermal.rate(y[6], e.heating_film, e.state.rotor_speed)
              : 0.0;
   d[7] = e.film.leakage_inner;
+  if (seal.rotor.flexible)
+  {
+    d[8] = y[10];
+    d[9] = y[11];
+    d[10] = ddr[0];
+    d[11] = ddr[1];
+  }
+  if (seal.rotor.axially_flexible())
+  {
+    // Varney & Green 2017 Eq. 7: the film and contact push the rotor away from the stator
+    d[12] = y[13];
+    d[13] = (-(e.film.force_z + e.contact.force) - seal.rotor.axial_stiffness * y[12] -
+             seal.rotor.axial_damping * y[13]) /
+            seal.rotor.mass;
+  }
   return d;
 }
 
@@ -362,10 +535,26 @@ State StatorTransient::initial_state() const
   y[4] = omega * by;
   y[5] = -omega * bx;
   y[6] = seal.thermal.initial_coning;
+  if (seal.rotor.flexible)
+  {
+    // the rotor starts where the shaft holds it, turning with the shaft
+    y[8] = r[0];
+    y[9] = r[1];
+    y[10] = rotating ? 0.0 : -omega * r[1];
+    y[11] = rotating ? 0.0 : omega * r[0];
+  }
   if (settings.start_at_rest_equilibrium)
   {
     const Evaluation e = evaluate(0, y);
     y[0] = solve_equilibrium(seal, film, e.state).axial_offset;
+  }
+  if (seal.rotor.axially_flexible())
+  {
+    // y[0] so far is the gap's offset: the rotor starts at rest, deflected by the film and
+    // contact at that gap, and the stator sits that much further
+    const Evaluation e = evaluate(0, y);
+    y[12] = -(e.film.force_z + e.contact.force) / seal.rotor.axial_stiffness;
+    y[0] += y[12];
   }
   return y;
 }
@@ -375,11 +564,11 @@ TransientSample StatorTransient::sample(const double t, const State &y) const
   const Evaluation e = evaluate(t, y);
   const double psi = rotating ? e.shaft_angle : 0.0;
   // outputs in the inertial frame
-  const auto r = rotor_tilt(e.shaft_angle);
+  const Vector2 r = seal.rotor.flexible ? Vector2{{y[8], y[9]}} : rotor_tilt(e.shaft_angle);
   const auto stator = turned({{y[2] + r[0], y[3] + r[1]}}, psi);
   const auto film_moment = turned({{e.film.moment_x, e.film.moment_y}}, psi);
   const auto contact_moment = turned({{e.contact.moment_x, e.contact.moment_y}}, psi);
-  const auto rotor = seal.runout.vector(e.shaft_angle);
+  const auto rotor = turned(r, psi);
   TransientSample s;
   s.time = t;
   s.rotor_speed = e.state.rotor_speed;

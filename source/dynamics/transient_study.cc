@@ -144,9 +144,83 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   state.stator_speed = seal.conditions.stator_speed;
   state.inner_pressure = seal.conditions.inner_pressure;
   state.outer_pressure = seal.conditions.outer_pressure;
-  const SealEquilibrium eq = solve_equilibrium(seal, *film, state);
-  state.axial_offset = eq.axial_offset;
-  state.coning = eq.coning;
+  SealEquilibrium eq = solve_equilibrium(seal, *film, state);
+
+  // the tilts: the steady state of the transient's equations at these conditions held constant
+  // (in the frame turning with the shaft under runout, the inertial one under a stator
+  // misalignment), started from the axisymmetric balance
+  FlexibleStatorSeal held = seal;
+  held.ramps.speed = Ramp{state.rotor_speed, state.rotor_speed, 0, 1e300, 1e300};
+  held.ramps.outer_pressure = Ramp{state.outer_pressure, state.outer_pressure, 0, 1e300, 1e300};
+  held.ramps.inner_pressure = Ramp{state.inner_pressure, state.inner_pressure, 0, 1e300, 1e300};
+  TransientSettings settings;
+  settings.parse_parameters(prm);
+  settings.end_time = 1;
+  settings.output_interval = 1;
+  TransientState guess{};
+  guess[0] = eq.axial_offset;
+  guess[6] = eq.coning;
+  // Continuation in the forcing from the axisymmetric balance: runout, dynamic and stator
+  // misalignment scaled by s from 0 to 1, each steady state the next one's Newton guess, the
+  // increment halved on a failure. This follows the branch that grows out of the linear
+  // response; a large whirl near a critical speed opens the faces and the branch can end in a
+  // fold (no steady state beyond it: the run says so).
+  auto scaled = [&](const double s)
+  {
+    FlexibleStatorSeal c = held;
+    c.runout.tilt *= s;
+    c.rotor.dynamic_misalignment *= s;
+    c.stator.initial_misalignment *= s;
+    return c;
+  };
+  auto solve_at = [&](const double s, TransientState g, unsigned int *its)
+  {
+    const FlexibleStatorSeal c = scaled(s);
+    const auto r = c.runout.vector(0);
+    g[8] = r[0];
+    g[9] = r[1];
+    return StatorTransient(c, *film, settings).steady_state(0, g, its);
+  };
+  unsigned int newton_iterations = 0, continuation_steps = 0;
+  TransientState y = guess;
+  double s_reached = 0, ds = 0.25;
+  while (s_reached < 1)
+  {
+    const double next = std::min(1.0, s_reached + ds);
+    unsigned int its = 0;
+    try
+    {
+      y = solve_at(next, y, &its);
+      newton_iterations += its;
+      ++continuation_steps;
+      s_reached = next;
+      ds = std::min(2 * ds, 0.25);
+    }
+    catch (std::runtime_error &e)
+    {
+      if (std::string(e.what()).find("no steady state") != std::string::npos)
+        throw;
+      ds /= 2;
+      if (ds < 1e-3)
+      {
+        std::ostringstream m;
+        m << "equilibrium: the steady whirl exists only up to " << s_reached
+          << " of the runout / misalignment forcing (a fold: beyond it the response jumps; "
+             "run `sealfe transient`). Last Newton failure: "
+          << e.what();
+        throw std::runtime_error(m.str());
+      }
+    }
+  }
+  const StatorTransient steady(held, *film, settings);
+  state = steady.film_state(0, y);
+  const TransientSample at = steady.sample(0, y);
+  eq.axial_offset = y[0] - y[12]; // the gap's offset (stator less an axially flexible rotor)
+  eq.coning = at.coning;
+  eq.film = film->loads(state);
+  eq.contact = seal.contact.loads(state.apply(seal.geometry));
+  eq.support_force = -seal.stator.axial_stiffness * y[0];
+
   const FilmCoefficients k = central_difference_coefficients(*film, state, eq.contact.min_film,
                                                              seal.geometry.outer_radius);
   // contact stiffness: central difference of the contact force in z
@@ -184,11 +258,25 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   s["roots_found"] = eq.roots_found;
   s["film_model"] = film->description();
   s["film_evaluations"] = film->evaluations();
-  s["tilts"] = "not solved: the equilibrium is axisymmetric (stator misalignment and runout "
-               "ignored)";
+  s["relative_tilt"] = at.relative_tilt;
+  s["stator_tilt"] = at.stator_tilt();
+  s["stator_tilt_x"] = at.stator_tilt_x;
+  s["stator_tilt_y"] = at.stator_tilt_y;
+  s["rotor_tilt"] = std::hypot(at.rotor_tilt_x, at.rotor_tilt_y);
+  s["film_moment_x"] = at.film_moment_x;
+  s["film_moment_y"] = at.film_moment_y;
+  s["contact_moment_x"] = at.contact_moment_x;
+  s["contact_moment_y"] = at.contact_moment_y;
+  s["stator_axial_offset"] = y[0];
+  s["rotor_axial_offset"] = y[12];
+  s["tilt_newton_iterations"] = newton_iterations;
+  s["tilt_continuation_steps"] = continuation_steps;
+  s["tilts"] = "steady state of the transient's equations (tilts at t = 0, shaft angle 0; under "
+               "runout the stator whirls with the shaft and these turn with it)";
   std::cout << "sealfe equilibrium: clearance " << seal.geometry.clearance + eq.axial_offset
             << " m, min film / sigma " << s["min_film_over_sigma"].get<double>() << ", coning "
-            << eq.coning << " rad, leakage " << eq.film.leakage_inner << " m^3/s\n";
+            << eq.coning << " rad, relative tilt " << at.relative_tilt << " rad, leakage "
+            << eq.film.leakage_inner << " m^3/s\n";
   return s;
 }
 } // namespace equilibrium
@@ -282,28 +370,33 @@ nlohmann::json sample_json(const TransientSample &s)
           {"leaked_volume", s.leaked_volume}};
 }
 
-/// Lift-off / touch-down events, the largest contact force and the leaked volume.
-nlohmann::json events(const std::vector<TransientSample> &rows, const double threshold)
+/// Lift-off / touch-down events (IDA's root finding), the largest contact force (over the output
+/// rows) and the leaked volume.
+nlohmann::json events(const StatorTransient::Result &result)
 {
+  const auto &rows = result.samples;
   nlohmann::json first_lift_off = nullptr, last_touch_down = nullptr;
   double max_contact = 0, t_max = 0;
-  for (std::size_t i = 0; i < rows.size(); ++i)
-  {
-    const bool in = rows[i].contact_force > threshold * rows[i].closing_force;
-    if (rows[i].contact_force > max_contact)
+  for (const auto &row : rows)
+    if (row.contact_force > max_contact)
     {
-      max_contact = rows[i].contact_force;
-      t_max = rows[i].time;
+      max_contact = row.contact_force;
+      t_max = row.time;
     }
-    if (i == 0)
-      continue;
-    const bool was = rows[i - 1].contact_force > threshold * rows[i - 1].closing_force;
-    if (was && !in && first_lift_off.is_null())
-      first_lift_off = {{"time", rows[i].time}, {"rotor_speed", rows[i].rotor_speed}};
-    if (!was && in)
-      last_touch_down = {{"time", rows[i].time}, {"rotor_speed", rows[i].rotor_speed}};
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto &e : result.contact_events)
+  {
+    const nlohmann::json event = {{"time", e.time}, {"rotor_speed", e.rotor_speed}};
+    all.push_back({{"time", e.time},
+                   {"rotor_speed", e.rotor_speed},
+                   {"event", e.lift_off ? "lift-off" : "touch-down"}});
+    if (e.lift_off && first_lift_off.is_null())
+      first_lift_off = event;
+    if (!e.lift_off)
+      last_touch_down = event;
   }
-  return {{"first_lift_off", first_lift_off},
+  return {{"contact_events", all},
+          {"first_lift_off", first_lift_off},
           {"last_touch_down", last_touch_down},
           {"max_contact_force", max_contact},
           {"time_of_max_contact_force", t_max},
@@ -359,7 +452,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   }
   output::write_file_atomically(dir, "transient.csv", csv_text(result.samples));
 
-  nlohmann::json s = events(result.samples, settings.contact_threshold);
+  nlohmann::json s = events(result);
   s["complete"] = result.complete;
   if (!result.complete)
     s["stop_reason"] = result.stop_reason;

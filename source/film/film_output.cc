@@ -102,8 +102,12 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   Vector<float> subdomain(s.triangulation.n_active_cells());
   subdomain = s.triangulation.locally_owned_subdomain();
   data_out.add_data_vector(subdomain, "rank");
+  // one Lagrange cell of the element's degree per cell (VTK_LAGRANGE_QUADRILATERAL): ParaView
+  // shows the curved element and its degree instead of k^2 straight sub-quads; zlib at its
+  // fastest level (the write is a large share of a big solve's time)
   DataOutBase::VtkFlags flags;
-  flags.write_higher_order_cells = false;
+  flags.write_higher_order_cells = true;
+  flags.compression_level = DataOutBase::VtkFlags::best_speed;
   data_out.set_flags(flags);
   data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
   return data_out.write_vtu_with_pvtu_record(directory + "/", basename, counter, s.mpi_communicator,

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <vtkCellType.h>
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
@@ -82,6 +83,13 @@ TEST(SolveOutput, VtuHasFieldsOnCurvedGeometry)
   reader->Update();
   vtkUnstructuredGrid *grid = reader->GetOutput();
   ASSERT_GT(grid->GetNumberOfPoints(), 0);
+  // one Lagrange cell of the element's degree (2 by default: 9 points) per finite element
+  ASSERT_GT(grid->GetNumberOfCells(), 0);
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    ASSERT_EQ(grid->GetCellType(c), VTK_LAGRANGE_QUADRILATERAL);
+    ASSERT_EQ(grid->GetCell(c)->GetNumberOfPoints(), 9);
+  }
   vtkDataArray *p = grid->GetPointData()->GetArray("pressure");
   vtkDataArray *h = grid->GetPointData()->GetArray("film_thickness");
   vtkDataArray *q = grid->GetPointData()->GetArray("volume_flux");

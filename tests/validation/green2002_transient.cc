@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 using namespace sealfe;
 
@@ -166,4 +167,77 @@ TEST(Green2002Transient, ConingFollowsTheFirstOrderLag)
   ASSERT_EQ(result.samples.size(), 9u);
   for (const TransientSample &x : result.samples)
     EXPECT_NEAR(x.coning / beta_ss, 1 - std::exp(-x.time / tau), 1e-7) << "t = " << x.time;
+}
+
+// The limits of Eq. 11: tau -> 0 gives the quasi-static coning beta_ss at once (tau = 0 is solved
+// algebraically; a tau of 1 us relaxes within the first output interval), tau -> infinity keeps
+// beta(0).
+TEST(Green2002Transient, ConingLimitsOfTheTimeConstant)
+{
+  const double beta_ss = 5e-6 * (0.3e-6 / C0) * std::pow(1500.0 / 500.0, 2);
+  for (const double tau : {0.0, 1e-6, 1e9})
+  {
+    FlexibleStatorSeal seal = constant_seal(1500, 1e5, 1e5, false);
+    seal.thermal.film = ThermalConing::Film::centerline;
+    seal.thermal.time_constant = tau;
+    seal.thermal.initial_coning = 2e-5;
+    const ClosingForceFilm film(seal);
+    TransientSettings settings;
+    settings.end_time = 1;
+    settings.output_interval = 0.25;
+    settings.relative_tolerance = 1e-9;
+    settings.absolute_tolerance = 1e-9;
+    settings.initial_axial_offset = 0;
+    const auto result = StatorTransient(seal, film, settings).run();
+    ASSERT_TRUE(result.complete) << result.stop_reason;
+    for (const TransientSample &x : result.samples)
+    {
+      if (x.time == 0 && tau > 0)
+        continue; // beta(0) is the initial coning
+      const double expected = tau > 1 ? 2e-5 : beta_ss;
+      EXPECT_NEAR(x.coning / expected, 1, 1e-6) << "tau = " << tau << " s, t = " << x.time;
+    }
+  }
+}
+
+// Lift-off is located by IDA's root finding, not by the output rows: on the Green 2002 reference
+// start-up with beta_ref = 1.23e-4 rad (the faces lift off, doc/transient.md) and rows 1 s apart,
+// the reported lift-off time t* is where the contact force equals the contact threshold times the
+// closing force (the definition), checked by a second run that ends at t*.
+TEST(Green2002Transient, LiftOffIsLocatedByRootFinding)
+{
+  FlexibleStatorSeal seal;
+  seal.geometry.inner_radius = ri;
+  seal.geometry.outer_radius = ro;
+  seal.geometry.clearance = C0;
+  seal.conditions.viscosity = 1.2e-3;
+  seal.thermal.reference_coning = 1.23e-4;
+  seal.contact = FaceContact(
+      AsperityContact(AsperityContact::Model::gw_ceb, AsperityContactParameters()), ri, ro, 8, 96);
+  const auto film = narrow_film(seal);
+  TransientSettings settings;
+  settings.end_time = 3;
+  settings.output_interval = 1;
+  settings.relative_tolerance = 1e-7;
+  settings.absolute_tolerance = 1e-7;
+  const auto first = StatorTransient(seal, film, settings).run();
+  ASSERT_TRUE(first.complete) << first.stop_reason;
+  ASSERT_FALSE(first.contact_events.empty()) << "no lift-off in the start-up";
+  const auto lift_off = first.contact_events.front();
+  ASSERT_TRUE(lift_off.lift_off);
+  EXPECT_GT(lift_off.time, 0);
+  EXPECT_LT(lift_off.time, 3);
+  EXPECT_NEAR(lift_off.rotor_speed, 1500 * lift_off.time / 3, 1e-9); // on the ramp of Eq. 17
+
+  settings.end_time = lift_off.time;
+  settings.output_interval = lift_off.time;
+  const auto second = StatorTransient(seal, film, settings).run();
+  ASSERT_TRUE(second.complete) << second.stop_reason;
+  const TransientSample &at = second.samples.back();
+  // the integration error of the contact force, relative to F_cls, is of the order of the
+  // tolerance times the contact's sensitivity to h (CEB: ~ (h/sigma) per unit relative change)
+  EXPECT_NEAR(at.contact_force / at.closing_force, settings.contact_threshold, 1e-4)
+      << "t* = " << lift_off.time << " s";
+  std::cout << "lift-off at " << lift_off.time << " s, " << lift_off.rotor_speed
+            << " rad/s; contact/F_cls there " << at.contact_force / at.closing_force << std::endl;
 }

@@ -50,6 +50,33 @@ struct RotorRunout
   std::array<double, 2> vector(double shaft_angle) const;
 };
 
+/// The rotor ring (subsection "Rotor ring"): rigid, its tilt the runout of "Rotor runout" turning
+/// with the shaft (Green 2002), or flexible, Varney & Green 2017 Eq. 5-6 — a lumped angular rotor
+/// on the shaft's stiffness K_r, with external damping D_r, rotating damping D_omega_r, gyroscopic
+/// coupling I_pr omega, dynamic misalignment chi, and the runout tilt as its static misalignment
+/// chi_s (the tilt the shaft holds it at, turning with it). Axially the rotor is rigid unless
+/// its axial stiffness is set (Eq. 7).
+struct RotorRing
+{
+  bool flexible = false;
+  double transverse_inertia = 0.2; ///< I_tr (kg m^2), Varney & Green 2017 Table 2
+  double polar_inertia = 0.1;      ///< I_pr (kg m^2)
+  double angular_stiffness = 5e5;  ///< K_r (N m/rad)
+  double angular_damping = 20;     ///< D_r (N m s/rad)
+  double rotating_damping = 1;     ///< D_omega_r (N m s/rad)
+  double dynamic_misalignment = 0; ///< chi (rad)
+  /// Axial (Eq. 7, with a flexible rotor only): K_zr > 0 makes the rotor's axial motion a state,
+  /// m_r u_zr'' + D_zr u_zr' + K_zr u_zr = -(F_f + F_c); 0 keeps it axially rigid.
+  double axial_stiffness = 0; ///< K_zr (N/m)
+  double axial_damping = 0;   ///< D_zr (N s/m)
+  double mass = 1;            ///< m_r (kg)
+  bool axially_flexible() const { return flexible && axial_stiffness > 0; }
+
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  void parse_parameters(dealii::ParameterHandler &prm);
+  void validate() const;
+};
+
 /// Subsection "Transient": end time, tolerances, output interval, initial state.
 struct TransientSettings
 {
@@ -93,6 +120,7 @@ struct FlexibleStatorSeal
   ClosingForce closing;
   StatorRing stator;
   RotorRunout runout;
+  RotorRing rotor;
   ThermalConing thermal;
   OperatingRamps ramps;
   FaceContact contact;
@@ -103,13 +131,23 @@ struct FlexibleStatorSeal
   double face_area() const;
 };
 
+/// The state of the transient (physical units): Z, Z', the relative tilt a = a_s - a_r and its
+/// rate, beta, the leaked volume V, the rotor tilt a_r and its rate (flexible rotor only, else 0),
+/// the rotor's axial displacement u_zr toward the stator and its rate (axially flexible rotor
+/// only); tilts and rates in the integration frame. The film gap is C0 + Z - u_zr + ...
+using TransientState = std::array<double, 14>;
+
 /// The state of Eq. 26 in Cartesian form (doc/transient.md): Z, Z', the relative tilt
 /// a = a_s - a_r and its rate in the integration frame (turning with the shaft or fixed in
-/// space, TransientSettings::frame), beta, the leaked volume V:
+/// space, TransientSettings::frame), beta, the leaked volume V, and with a flexible rotor its
+/// tilt a_r and rate (Varney & Green 2017 Eq. 5-6):
 ///   m Z''      = F_f + F_c - F_cls(t) - K_sz Z - D_sz Z'
 ///   I a_s''    = M_f + M_c - K_s (a_s - a_si) - D_s a_s'      (a_s = stator tilt vector)
 ///   tau beta'  = beta_ref (h_ref/h)(omega/omega_ref)^2 - beta
 ///   V'         = Q_inner
+///   I_tr a_r'' = -M_f - M_c - I_pr omega J' a_r' - D_r a_r' - K_r (a_r - chi_s) - omega D_wr J'
+///   a_r
+///                + (I_tr - I_pr) chi (omega^2 u - omega' J u)        (flexible rotor; J' = -J)
 /// with the film and contact evaluated at the relative tilt a = a_s - a_r(psi_r(t)), integrated
 /// by SUNDIALS IDA (variable-order BDF, dense Newton with a difference Jacobian).
 class StatorTransient
@@ -118,9 +156,18 @@ public:
   StatorTransient(const FlexibleStatorSeal &seal, const FilmForceModel &film,
                   const TransientSettings &settings);
 
+  /// A crossing of the contact threshold (contact force = Contact threshold x F_cls), located by
+  /// IDA's root finding between steps (to the integrator's time resolution, not the output rows).
+  struct ContactEvent
+  {
+    double time, rotor_speed;
+    bool lift_off; ///< true: the contact force falls below the threshold; false: touch-down
+  };
+
   struct Result
   {
     std::vector<TransientSample> samples;
+    std::vector<ContactEvent> contact_events;
     bool complete = false;
     std::string stop_reason;
     unsigned long film_evaluations = 0;
@@ -136,21 +183,36 @@ public:
   std::function<void(double time)> after_output;
 
   /// The full sample (loads included) for the physical state y at time t.
-  TransientSample sample(double t, const std::array<double, 8> &y) const;
-  /// The initial state (Z, Z', a_x, a_y, a_x', a_y', beta, V), a the relative tilt.
-  std::array<double, 8> initial_state() const;
+  TransientSample sample(double t, const TransientState &y) const;
+  /// The steady state of these equations at time t's conditions, held constant: every rate zero
+  /// in the integration frame — the frame turning with the shaft when runout (or a flexible
+  /// rotor's dynamic misalignment) forces the seal, the inertial one when only the stator's
+  /// initial misalignment does. Unknowns: Z, the relative tilt, beta (first-order lag), the
+  /// flexible rotor's tilt; Newton with a central-difference Jacobian from `guess` (its rates
+  /// are ignored). Throws std::runtime_error (one line) when both forcings are present (no
+  /// steady state exists) or Newton does not converge. `iterations` gets Newton's count.
+  TransientState steady_state(double t, const TransientState &guess,
+                              unsigned int *iterations = nullptr) const;
+  /// The film's state at (t, y): tilts in the integration frame with their inertial rates, the
+  /// coning in use, the ramps' speeds and pressures.
+  FilmState film_state(double t, const TransientState &y) const;
+  /// Contact force minus Contact threshold x F_cls at the state (N): > 0 in contact. Contact
+  /// only (no film evaluation).
+  double contact_margin(double t, const TransientState &y) const;
+  /// The initial state (TransientState), a the relative tilt; a flexible rotor at its runout.
+  TransientState initial_state() const;
 
 private:
   struct Evaluation;
-  Evaluation evaluate(double t, const std::array<double, 8> &y) const;
-  std::array<double, 8> rate(double t, const std::array<double, 8> &y) const;
+  Evaluation evaluate(double t, const TransientState &y) const;
+  TransientState rate(double t, const TransientState &y) const;
   /// The rotor's tilt vector in the integration frame at the shaft angle psi.
   std::array<double, 2> rotor_tilt(double shaft_angle) const;
 
   const FlexibleStatorSeal &seal;
   const FilmForceModel &film;
   TransientSettings settings;
-  std::array<double, 8> scale;
+  TransientState scale;
   bool rotating; ///< stator-tilt state (y[2..5]) in the frame turning with the shaft
   mutable unsigned long evaluations = 0;
 };
