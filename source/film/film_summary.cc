@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 
 namespace sealfe
 {
@@ -75,6 +77,23 @@ std::string error_estimate_unavailable(const ReynoldsSolver &solver)
          " cells cannot be halved (even counts and at least 6 circumferential cells are needed)";
 }
 
+std::string pressure_undershoot_warning(const FilmLoads &loads, const double cavitation_pressure)
+{
+  // Measured against the pressure rise the film builds above the cavity (its peak above p_cav).
+  const double peak = loads.max_pressure - cavitation_pressure;
+  if (!(peak > 0) || !(loads.pressure_undershoot > 0.01 * peak))
+    return "";
+  std::ostringstream s;
+  s << std::setprecision(3) << "the interpolated pressure dips " << loads.pressure_undershoot
+    << " Pa (" << 100 * loads.pressure_undershoot / peak
+    << " % of the peak above the cavitation pressure) below its nodes at the cavity edge, which "
+       "the solver keeps at p_cav; this dip removes "
+    << -loads.pressure_undershoot_force
+    << " N from force_z (pressure_undershoot_force). Refine the mesh or use degree 1 to reduce "
+       "it (doc/cavitation.md)";
+  return s.str();
+}
+
 double mass_balance_flow_scale(const FilmThickness &film, const OperatingConditions &conditions,
                                const FilmLoads &loads)
 {
@@ -121,6 +140,16 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   summary["round_off"] = round_off;
   if (round_off.contains("warning") && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
     std::cerr << "sealfe: warning: " << round_off["warning"].get<std::string>() << std::endl;
+  summary["min_pressure_nodal"] = loads.min_pressure_nodal;
+  summary["pressure_undershoot"] = loads.pressure_undershoot;
+  summary["pressure_undershoot_force"] = loads.pressure_undershoot_force;
+  const std::string undershoot = pressure_undershoot_warning(loads, solver.cavitation.pressure);
+  if (!undershoot.empty())
+  {
+    summary["pressure_undershoot_warning"] = undershoot;
+    if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      std::cerr << "sealfe: warning: " << undershoot << std::endl;
+  }
   const char *names[] = {"none", "half-sommerfeld", "reynolds", "jfo"};
   summary["cavitation"] = {{"model", names[static_cast<int>(solver.cavitation.model)]},
                            {"cavitation_pressure", solver.cavitation.pressure},

@@ -112,9 +112,63 @@ ValueAndSlope power_gauss(const double A, const double alpha, const double beta,
 }
 } // namespace
 
+double tripp_shape(const double gamma)
+{
+  // Second-order perturbation of the film conductance h^3 (Tripp 1983; derivation in
+  // doc/roughness.md section 2.2): phi_x - 1 = (3/H^2)(1 - 3 <k_x^2/|k|^2>), and for the Peklenik
+  // pattern (the spectrum is an isotropic one stretched by the correlation lengths) the angular
+  // mean is <k_x^2/|k|^2> = 1/(1 + gamma).
+  return 3. * (1. - 3. / (1. + gamma));
+}
+
 ValueAndSlope pressure_flow_factor(const double H, const double gamma)
 {
-  return interpolate(gamma, [H](const int k) { return pressure_fit(k, H); });
+  const Bracket b = bracket(gamma); // also refuses gamma outside the tables, at every H
+  // Departure from 1 of the fits (exact at the tabulated patterns) for H <= fits_upper_limit.
+  const auto departure = [gamma, &b](const double x) -> ValueAndSlope
+  {
+    const auto fit = [x](const int k)
+    {
+      const ValueAndSlope f = pressure_fit(k, x);
+      return ValueAndSlope{f.value - 1., f.d_dh};
+    };
+    if (b.weight == 0)
+      return fit(b.lower);
+    if (b.weight == 1)
+      return fit(b.lower + 1);
+    const ValueAndSlope f0 = fit(b.lower), f1 = fit(b.lower + 1);
+    const double w = b.weight;
+    // (gamma = 1 is tabulated, so no bracket straddles it; the sign changes inside [1, 3].)
+    if (tabulated_patterns[b.lower] == 1.)
+    {
+      // Between gamma = 1 (phi_x < 1) and gamma = 3 (phi_x > 1) the departure changes sign: the
+      // fits' departures are scaled by Tripp's shape T(gamma), the scaled values interpolated,
+      // and the result multiplied by T(gamma) again, so phi_x = 1 exactly where T = 0 (gamma = 2).
+      const double T0 = tripp_shape(tabulated_patterns[b.lower]);
+      const double T1 = tripp_shape(tabulated_patterns[b.lower + 1]);
+      const double T = tripp_shape(gamma);
+      return {T * ((1 - w) * f0.value / T0 + w * f1.value / T1),
+              T * ((1 - w) * f0.d_dh / T0 + w * f1.d_dh / T1)};
+    }
+    // Both neighbours on the same side of 1: the departure, linear in ln(gamma).
+    return {(1 - w) * f0.value + w * f1.value, (1 - w) * f0.d_dh + w * f1.d_dh};
+  };
+  if (H <= fits_upper_limit)
+  {
+    const ValueAndSlope d = departure(H);
+    return {1. + d.value, d.d_dh};
+  }
+  const double T = tripp_shape(gamma);
+  const ValueAndSlope tripp{T / (H * H), -2. * T / (H * H * H)};
+  if (H >= tripp_from)
+    return {1. + tripp.value, tripp.d_dh};
+  // Between the two: a C1 blend (smoothstep in H) from the fits to Tripp's asymptote.
+  const ValueAndSlope d = departure(H);
+  const double span = tripp_from - fits_upper_limit;
+  const double s = (H - fits_upper_limit) / span;
+  const double t = s * s * (3. - 2. * s), dt = 6. * s * (1. - s) / span;
+  return {1. + (1. - t) * d.value + t * tripp.value,
+          (1. - t) * d.d_dh + t * tripp.d_dh + dt * (tripp.value - d.value)};
 }
 
 double pressure_flow_factor_validity(const double gamma)

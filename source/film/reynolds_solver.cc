@@ -477,6 +477,23 @@ double ReynoldsSolver::l2_error(const Function<2> &exact) const
   return VectorTools::compute_global_error(triangulation, cellwise, VectorTools::L2_norm);
 }
 
+double ReynoldsSolver::pressure_integral(const std::function<double(double)> &g,
+                                         const Quadrature<2> &cell_rule) const
+{
+  FEValues<2> fe_values(*mapping, *fe, cell_rule, update_values | update_JxW_values);
+  std::vector<double> p(cell_rule.size());
+  double sum = 0;
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      fe_values.reinit(cell);
+      fe_values.get_function_values(locally_relevant_solution, p);
+      for (unsigned int q = 0; q < p.size(); ++q)
+        sum += g(p[q]) * fe_values.JxW(q);
+    }
+  return Utilities::MPI::sum(sum, mpi_communicator);
+}
+
 std::string ReynoldsSolver::write_output(const std::string &directory) const
 {
   return write_film_output(*this, directory);

@@ -31,7 +31,16 @@ struct FilmLoads
   double friction_torque = 0;
   double min_film = 0;
   double max_pressure = 0;
-  double min_pressure = 0;
+  double min_pressure = 0; ///< Pa, minimum of the interpolated p_h (quadrature points and nodes)
+  /// Pa, minimum over the degrees of freedom (support points): the values the cavitation models
+  /// reynolds and jfo keep at or above p_cav (to solver tolerance).
+  double min_pressure_nodal = 0;
+  /// Pa, >= 0 (reynolds and jfo; 0 for the others): min(p_cav, min_pressure_nodal) -
+  /// min_pressure, how far a higher-order interpolant dips below its nodes at the cavity edge.
+  double pressure_undershoot = 0;
+  /// N, <= 0 (reynolds and jfo; 0 for the others): int min(p_h - p_cav, 0) dA, the load the
+  /// undershoot removes from force_z.
+  double pressure_undershoot_force = 0;
   double cavitated_fraction = 0;
   double contact_force = 0;         ///< N, part of force_z carried by the asperities
   double contact_moment_x = 0;      ///< N m, part of moment_x
@@ -99,7 +108,8 @@ private:
                     const std::vector<double> &shape_value,
                     dealii::Vector<double> &local_residual) const;
   /// Global sums into FilmLoads.
-  FilmLoads finish(const std::vector<double> &sum, bool base, double p_min, double p_max) const;
+  FilmLoads finish(const std::vector<double> &sum, bool base, double p_min, double p_max,
+                   double p_min_nodal) const;
 
   const ReynoldsSolver &solver;
   bool clip, jfo;

@@ -15,7 +15,9 @@
 namespace sealfe
 {
 /// summary.json content of the solve `solver` (of `settings`) that gave `loads`: the loads, dofs,
-/// degree, iterations, the discrete mass balance, "cavitation", "roughness", and
+/// degree, iterations, the discrete mass balance, the nodal minimum pressure and the
+/// interpolation undershoot below p_cav (with pressure_undershoot_warning), "cavitation",
+/// "roughness", and
 /// "error_estimate": the loads' difference to a solve of the same settings on a mesh twice as
 /// coarse / (2^k - 1) (estimate_load_errors), if the solver's Error estimate is on and the mesh
 /// can be coarsened. "stage_wall_time" holds the solver's stage times and the estimate's.
@@ -29,6 +31,10 @@ std::string error_estimate_unavailable(const ReynoldsSolver &solver);
 /// leakages. It vanishes only when nothing drives a flow (then the residual is 0).
 double mass_balance_flow_scale(const FilmThickness &film, const OperatingConditions &conditions,
                                const FilmLoads &loads);
+
+/// The warning ("" if none) when the interpolated pressure of a reynolds/jfo solve dips below its
+/// nodes (FilmLoads::pressure_undershoot) by more than 1 % of the peak pressure above p_cav.
+std::string pressure_undershoot_warning(const FilmLoads &loads, double cavitation_pressure);
 
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
                                             const ReynoldsSolver &solver, const FilmLoads &loads,

@@ -21,16 +21,29 @@ struct ValueAndSlope
 /// Peklenik surface pattern gamma (correlation length along sliding / across sliding). Derivatives
 /// are d/dH. No clamping here: the caller (FlowFactors) decides what to do below the validity
 /// limits, which are exposed too. gamma must lie in [1/9, 9]; between the seven tabulated values
-/// the fitted *values* are interpolated linearly in ln(gamma), which keeps phi_y(H, gamma) =
-/// phi_x(H, 1/gamma) exact for every gamma.
+/// the fits are interpolated in ln(gamma) (pressure flow factor: see pressure_flow_factor; the
+/// others: their values, linearly). The rules are symmetric in ln(gamma), which keeps
+/// phi_y(H, gamma) = phi_x(H, 1/gamma) exact for every gamma.
 namespace patir_cheng
 {
 /// The seven surface patterns of the published tables.
 constexpr int n_patterns = 7;
 extern const double tabulated_patterns[n_patterns]; // 1/9, 1/6, 1/3, 1, 3, 6, 9
 
-/// Pressure flow factor along x (the sliding direction), PC 1978 Table 1:
-///   gamma <= 1: phi_x = 1 - C exp(-r H);   gamma > 1: phi_x = 1 + C H^-r.
+/// Largest H of the published fits (the range of PC's simulations) and the H from which the
+/// pressure flow factor is Tripp's asymptote alone.
+constexpr double fits_upper_limit = 6.;
+constexpr double tripp_from = 12.;
+
+/// Tripp's (1983) second-order shape of the pressure flow factor, phi_x = 1 + T(gamma)/H^2 for
+/// large H: T(gamma) = 3 (1 - 3/(1 + gamma)), zero at gamma = 2 (doc/roughness.md, 2.2).
+double tripp_shape(double gamma);
+
+/// Pressure flow factor along x (the sliding direction). For H <= 6 the PC 1978 Table 1 fits,
+///   gamma <= 1: phi_x = 1 - C exp(-r H);   gamma > 1: phi_x = 1 + C H^-r,
+/// exact at the tabulated gamma; in between, the departure phi_x - 1 linear in ln(gamma), except
+/// between gamma = 1 and 3 (where it changes sign) the departure over T(gamma). For H >= 12
+/// Tripp's 1 + T(gamma)/H^2; a C1 blend of the two for 6 < H < 12.
 ValueAndSlope pressure_flow_factor(double H, double gamma);
 /// Smallest H at which the pressure flow factor fit is valid (1, 1, 0.75, 0.5, 0.5, 0.5, 0.5).
 double pressure_flow_factor_validity(double gamma);

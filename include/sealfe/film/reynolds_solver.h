@@ -106,6 +106,9 @@ public:
 
   /// L2 norm of (p_h - exact) over the dam (for convergence tests).
   double l2_error(const dealii::Function<2> &exact) const;
+  /// int g(p_h) dA over the dam with the given rule on every cell (for quadrature checks).
+  double pressure_integral(const std::function<double(double)> &g,
+                           const dealii::Quadrature<2> &cell_rule) const;
 
   dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
   unsigned int degree() const { return polynomial_degree; }
