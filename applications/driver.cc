@@ -1,4 +1,5 @@
 #include "driver.h"
+#include "version.h"
 
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
@@ -55,9 +56,10 @@ namespace
 {
 void declare_common(ParameterHandler &prm, const SubCommand &command)
 {
-  prm.declare_entry("Output directory", "sealfe-output", Patterns::Anything(),
+  // One directory per sub-command, so that one run never replaces another's summary.json.
+  prm.declare_entry("Output directory", "sealfe-output/" + command.name, Patterns::Anything(),
                     "Directory for summary.json, used_parameters.prm and the field/table files "
-                    "(created if needed).");
+                    "(created if needed). Default: sealfe-output/<sub-command>.");
   if (command.face_seal)
   {
     FilmThickness::declare_parameters(prm);
@@ -152,7 +154,8 @@ void publish_paths(nlohmann::json &node)
 void print_usage(std::ostream &out, const std::vector<SubCommand> &commands)
 {
   out << "usage: sealfe <sub-command> [file.prm]\n"
-         "       sealfe --print-parameters [sub-command]\n\nsub-commands:\n";
+         "       sealfe --print-parameters [sub-command]\n"
+         "       sealfe --version\n\nsub-commands:\n";
   for (const auto &c : commands)
     out << "  " << std::left << std::setw(14) << c.name << c.purpose << "\n";
 }
@@ -170,6 +173,12 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       if (root)
         print_usage(args.empty() ? std::cerr : std::cout, commands);
       return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version")
+    {
+      if (root)
+        std::cout << "sealfe " << version << " (git " << git_revision << ")\n";
+      return 0;
     }
     auto find = [&](const std::string &name) -> const SubCommand &
     {
@@ -266,6 +275,8 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
     if (root)
     {
       summary["sub_command"] = command.name;
+      summary["version"] = version;
+      summary["git_revision"] = git_revision;
       summary["mpi_ranks"] = Utilities::MPI::n_mpi_processes(comm);
       summary["wall_time"] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

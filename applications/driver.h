@@ -28,7 +28,8 @@ struct SubCommand
   std::function<void(dealii::ParameterHandler &)> declare;
   /// Parses, computes, prints the headline (rank 0), writes the output files into the directory
   /// (output::make_directory, once the input is checked) and returns the summary. The driver
-  /// adds sub_command, mpi_ranks and wall_time and writes summary.json and used_parameters.prm.
+  /// adds sub_command, version, git_revision, mpi_ranks and wall_time and writes summary.json and
+  /// used_parameters.prm.
   std::function<nlohmann::json(dealii::ParameterHandler &, const std::string &output_directory,
                                MPI_Comm)>
       run;

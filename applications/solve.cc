@@ -43,11 +43,11 @@ void declare_parameters(ParameterHandler &prm)
 
 void print_loads(const FilmLoads &loads)
 {
-  std::cout << "  force_z            " << loads.force_z << " N\n"
-            << "  moment_x, moment_y " << loads.moment_x << ", " << loads.moment_y << " N m\n"
-            << "  leakage in / out   " << loads.leakage_inner << ", " << loads.leakage_outer
-            << " m^3/s\n"
-            << "  friction torque    " << loads.friction_torque << " N m\n";
+  std::cout << "  force_z              " << loads.force_z << " N\n"
+            << "  moment_x, moment_y   " << loads.moment_x << ", " << loads.moment_y << " N m\n"
+            << "  leakage inner circle " << loads.leakage_inner << " m^3/s (out through r = ri)\n"
+            << "  leakage outer circle " << loads.leakage_outer << " m^3/s (out through r = ro)\n"
+            << "  friction torque      " << loads.friction_torque << " N m\n";
 }
 
 /// Level 0: the closed-form loads of the narrow seal.
@@ -108,9 +108,9 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
     std::cout << std::setprecision(6) << "sealfe solve (finite element, " << solver.n_dofs()
               << " dofs, degree " << solver.degree() << ")\n";
     print_loads(loads);
-    std::cout << "  min film           " << loads.min_film << " m\n";
+    std::cout << "  min film             " << loads.min_film << " m\n";
     if (write_fields)
-      std::cout << "  fields             " << directory << "/solution.pvd\n";
+      std::cout << "  fields               " << directory << "/solution.pvd\n";
   }
   return summary;
 }

@@ -120,8 +120,8 @@ def wileman_green(binary, workdir):
 # ---- Varney & Green (2017) ---------------------------------------------------------------------
 def peak(csv_file, column):
     with open(csv_file) as f:
-        lines = [line for line in f if not line.startswith("#")]
-        header = lines[0].strip().split(",")
+        lines = f.readlines()
+        header = [h.split(" [")[0] for h in lines[0].strip().split(",")]  # doc/csv.md
         i, j = header.index("swept_speed"), header.index(column)
         rows = [line.strip().split(",") for line in lines[1:] if line.strip()]
     best = max(rows, key=lambda r: float(r[j]))

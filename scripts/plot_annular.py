@@ -17,7 +17,8 @@ import sys
 
 def read_rows(path):
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+        # "lambda [-]" -> "lambda" (doc/csv.md)
+        rows = [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(f)]
     for r in rows:
         for key in ("lambda", "step_ratio_upper_bound", "clearance_ratio", "step_ratio",
                     "stiffness_dimensionless", "leakage_dimensionless",

@@ -3,10 +3,10 @@
 
 usage: plot_response.py response.csv response.png
 
-Reads the CSV written by `sealfe response` (columns swept_speed, relative_tilt, contact_tilt,
-stable, ...), draws the largest relative tilt gamma* (mrad) against the swept speed, the face
-contact limit C0/ri as a horizontal line, and shades the speeds where the seal is unstable (there
-the steady state is never reached). Uses matplotlib's Agg backend: no display needed.
+Reads the CSV written by `sealfe response` (doc/csv.md: `name [unit]` headers; columns
+swept_speed, relative_tilt, contact_tilt, stable, ...), draws the largest relative tilt gamma*
+(mrad) against the swept speed, the face contact limit C0/ri as a horizontal line, and shades
+the speeds where the seal is unstable (there the steady state is never reached). Uses matplotlib's Agg backend: no display needed.
 """
 import csv
 import sys
@@ -18,9 +18,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def read(path):
-    with open(path) as f:
-        rows = [line for line in f if not line.startswith("#")]
-    return list(csv.DictReader(rows))
+    """Rows as dicts keyed by the column name without its unit ("relative_tilt [rad]" ->
+    "relative_tilt")."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return [{k.split(" [")[0]: v for k, v in r.items()} for r in rows]
 
 
 def main():

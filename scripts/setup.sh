@@ -1,12 +1,27 @@
 #!/usr/bin/env bash
 # Installs what is missing (Debian packages) and builds sealfe (Release) in build/.
 # Idempotent and quiet when nothing is missing.
+#
+# usage: setup.sh [run|test]
+#   run   what running needs only: the compiler, deal.II, nlohmann-json, MPI and matplotlib for
+#         the plots; builds the `sealfe` target alone (scripts/run.sh)
+#   test  (default) also GoogleTest, VTK (tests read the VTU output), google-benchmark and gmsh;
+#         builds every target, tests included (scripts/test.sh, CI)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 
-packages=(cmake g++ make libdeal.ii-dev libboost-dev libgtest-dev gmsh libvtk9-dev nlohmann-json3-dev
-          libbenchmark-dev mpi-default-bin mpi-default-dev python3-numpy python3-matplotlib)
+mode=${1:-test}
+case "$mode" in
+  run | test) ;;
+  *) echo "usage: scripts/setup.sh [run|test]" >&2; exit 2 ;;
+esac
+
+packages=(cmake g++ make libdeal.ii-dev libboost-dev nlohmann-json3-dev mpi-default-bin
+          mpi-default-dev python3-numpy python3-matplotlib)
+if [ "$mode" = test ]; then
+  packages+=(libgtest-dev gmsh libvtk9-dev libbenchmark-dev)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -21,8 +36,18 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-if [ ! -f build/CMakeCache.txt ]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+quiet() { grep -Ev "^\[|^Consolidate|^Scanning|^Built target|^make" || true; }
+if [ "$mode" = run ]; then
+  # A build directory made by the test mode keeps its tests; only the executable is built.
+  if [ ! -f build/CMakeCache.txt ]; then
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSEALFE_BUILD_TESTS=OFF >/dev/null
+  fi
+  cmake --build build -j "$jobs" --target sealfe -- --no-print-directory 2>&1 | quiet
+else
+  # A build directory made by the run mode is switched to build the tests.
+  if [ ! -f build/CMakeCache.txt ] || grep -q "^SEALFE_BUILD_TESTS:BOOL=OFF" build/CMakeCache.txt; then
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSEALFE_BUILD_TESTS=ON >/dev/null
+  fi
+  cmake --build build -j "$jobs" -- --no-print-directory 2>&1 | quiet
 fi
-cmake --build build -j "$jobs" -- --no-print-directory 2>&1 | grep -Ev "^\[|^Consolidate|^Scanning|^Built target|^make" || true
 test -x build/sealfe || { echo "sealfe setup: build failed" >&2; exit 1; }

@@ -148,14 +148,14 @@ def row_of(label, data, summary, wall, ok, t_steady=6.0, t_end=None):
     row = {
         "case": label,
         "complete": ok and summary.get("complete", False),
-        "Z/C0 (6 s)": g("Z") / C0,
-        "gamma ro/C0 (6 s)": g("relative tilt") * RO / C0,
-        "h_min/C0 (6 s)": g("min film") / C0,
+        "Z/C0 (6 s)": g("axial_offset") / C0,
+        "gamma ro/C0 (6 s)": g("relative_tilt") * RO / C0,
+        "h_min/C0 (6 s)": g("min_film") / C0,
         "beta ro/C0 (6 s)": g("coning") * RO / C0,
-        "Q/Q_ref (6 s)": g("leakage inner") / Q_REF,
-        "contact force N (6 s)": g("contact force"),
-        "max gamma ro/C0": max(data["relative tilt"]) * RO / C0,
-        "max Z/C0": max(data["Z"]) / C0,
+        "Q/Q_ref (6 s)": g("leakage_inner") / Q_REF,
+        "contact force N (6 s)": g("contact_force"),
+        "max gamma ro/C0": max(data["relative_tilt"]) * RO / C0,
+        "max Z/C0": max(data["axial_offset"]) / C0,
         "max contact force N": summary.get("max_contact_force"),
         "lift-off s": (summary.get("first_lift_off") or {}).get("time"),
         "touch-down s": (summary.get("last_touch_down") or {}).get("time"),
@@ -167,9 +167,9 @@ def row_of(label, data, summary, wall, ok, t_steady=6.0, t_end=None):
     if t_end is not None:
         row.update(
             {
-                "Z/C0 (end)": g("Z", t_end) / C0,
-                "gamma ro/C0 (end)": g("relative tilt", t_end) * RO / C0,
-                "h_min/C0 (end)": g("min film", t_end) / C0,
+                "Z/C0 (end)": g("axial_offset", t_end) / C0,
+                "gamma ro/C0 (end)": g("relative_tilt", t_end) * RO / C0,
+                "h_min/C0 (end)": g("min_film", t_end) / C0,
                 "beta ro/C0 (end)": g("coning", t_end) * RO / C0,
             }
         )
@@ -193,11 +193,11 @@ def history_figure(path, title, runs):
     fig, ax = plt.subplots(5, 1, figsize=(8, 12), sharex=True)
     for label, data in runs:
         n = revolutions(data)
-        ax[0].plot(n, [z / C0 for z in data["Z"]], label=label)
-        ax[1].plot(n, [g * RO / C0 for g in data["relative tilt"]], label=label)
-        ax[2].plot(n, [h / C0 for h in data["min film"]], label=label)
+        ax[0].plot(n, [z / C0 for z in data["axial_offset"]], label=label)
+        ax[1].plot(n, [g * RO / C0 for g in data["relative_tilt"]], label=label)
+        ax[2].plot(n, [h / C0 for h in data["min_film"]], label=label)
         ax[3].plot(n, [b * RO / C0 for b in data["coning"]], label=label)
-        ax[4].plot(n, [q / Q_REF for q in data["leakage inner"]], label=label)
+        ax[4].plot(n, [q / Q_REF for q in data["leakage_inner"]], label=label)
     names = ["Z / C0", "relative tilt gamma ro / C0", "h_min / C0", "coning beta ro / C0",
              "leakage Q / (pi dp C0^3 / 6 mu)"]
     for a, n in zip(ax, names):
@@ -275,12 +275,12 @@ def rigid_separation_speed(Ks, ambient, contact_force, fraction=0.0):
 
 def separation_speed(data, fraction=0.01):
     """Speed at which the contact force first falls below `fraction` of its initial value."""
-    c0 = data["contact force"][0]
+    c0 = data["contact_force"][0]
     for i in range(1, len(data["time"])):
-        c, cp = data["contact force"][i], data["contact force"][i - 1]
+        c, cp = data["contact_force"][i], data["contact_force"][i - 1]
         if c < fraction * c0 <= cp:
             w = (cp - fraction * c0) / (cp - c)
-            return data["rotor speed"][i - 1] + w * (data["rotor speed"][i] - data["rotor speed"][i - 1])
+            return data["rotor_speed"][i - 1] + w * (data["rotor_speed"][i] - data["rotor_speed"][i - 1])
     return float("nan")
 
 
@@ -333,10 +333,10 @@ def main():
                                     args.repeat)
             rows.append(row_of("beta_ref %g, tau 2 s, p_o held" % beta, data, s, wall, ok,
                                t_end=9.0))
-            rows[-1].update({"Z/C0 (15 s)": data["Z"][-1] / C0,
-                             "h_min/C0 (15 s)": data["min film"][-1] / C0,
+            rows[-1].update({"Z/C0 (15 s)": data["axial_offset"][-1] / C0,
+                             "h_min/C0 (15 s)": data["min_film"][-1] / C0,
                              "beta ro/C0 (15 s)": data["coning"][-1] * RO / C0,
-                             "Q/Q_ref (9 s)": at(data, "leakage inner", 9.0) / Q_REF})
+                             "Q/Q_ref (9 s)": at(data, "leakage_inner", 9.0) / Q_REF})
             runs.append(("tau = 2 s, p_o held at shut-down", data))
             history_figure(os.path.join(out, "fig5_beta_%s.png" % reading),
                            "Green 2002 Fig 5: thermal time constant (B = 0.75), beta_ref = %g rad"
@@ -363,7 +363,7 @@ def main():
                 end = min(1.5 * w_est / ALPHA, 2.0)
                 data, s, wall, ok = run(binary, workdir, name,
                                         separation_prm(name, Ks, ambient, end), args.repeat)
-                fc0 = data["contact force"][0]
+                fc0 = data["contact_force"][0]
                 rows.append({
                     "ambient pressure Pa": ambient,
                     "angular stiffness N m/rad": Ks,
@@ -402,10 +402,10 @@ def separation_figures(out, rows, shown):
             continue
         n = [1e5 * t / (2 * math.pi) for t in data["time"]]
         lab = "p = %g kPa, K_s = %g" % (ambient / 1e3, Ks)
-        ax[0].plot(n, [z / C0 for z in data["Z"]], label=lab)
-        ax[1].plot(n, [g * RO / C0 for g in data["relative tilt"]], label=lab)
-        ax[2].plot(n, [h / C0 for h in data["min film"]], label=lab)
-        ax[3].plot(n, data["contact force"], label=lab)
+        ax[0].plot(n, [z / C0 for z in data["axial_offset"]], label=lab)
+        ax[1].plot(n, [g * RO / C0 for g in data["relative_tilt"]], label=lab)
+        ax[2].plot(n, [h / C0 for h in data["min_film"]], label=lab)
+        ax[3].plot(n, data["contact_force"], label=lab)
     for a, lab in zip(ax, ["Z / C0", "relative tilt ro / C0", "h_min / C0", "contact force [N]"]):
         a.set_ylabel(lab)
         a.grid(True, alpha=0.3)

@@ -1,5 +1,6 @@
 // Annular seal model of Fleming (NASA TM X-73654), its optimisation and the `sealfe annular` run.
 #include <sealfe/annular/annular_seal.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/io/python_plot.h>
 #include <sealfe/numerics/minimisation.h>
 #include <sealfe/numerics/number_lists.h>
@@ -665,20 +666,20 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   // concentric pressure profile
   const std::string profile_name = "annular_pressure_profile.csv";
   {
-    std::ofstream f(out / profile_name);
-    if (!f)
-      fail("cannot write " + (out / profile_name).string());
-    f << std::setprecision(10);
-    f << "z,clearance,pressure,velocity,pressure_drop_fraction\n";
+    csv::Writer f({{"z", "m"},
+                   {"clearance", "m"},
+                   {"pressure", "Pa"},
+                   {"velocity", "m/s"},
+                   {"pressure_drop_fraction", csv::dimensionless}});
     const double unit_flow = r.leakage / (pi * seal.diameter);
     const double p0 = seal.outlet_pressure + seal.pressure_drop;
     for (const ProfilePoint &p : pressure_profile(seal.dimensionless(), c.profile_points))
     {
       const double h = p.clearance_ratio * seal.outlet_clearance;
-      f << p.axial_ratio * seal.length << ',' << h << ','
-        << p0 - seal.pressure_drop * p.pressure_drop_fraction << ','
-        << unit_flow / (seal.density * h) << ',' << p.pressure_drop_fraction << '\n';
+      f.add_row({p.axial_ratio * seal.length, h, p0 - seal.pressure_drop * p.pressure_drop_fraction,
+                 unit_flow / (seal.density * h), p.pressure_drop_fraction});
     }
+    f.write(output_directory, profile_name);
   }
 
   // sweep of the optimum seals over Lambda, and its plot
@@ -686,24 +687,28 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   if (!c.sweep_lambdas.empty())
   {
     const std::string sweep_name = "annular_lambda_sweep.csv";
-    const fs::path csv = out / sweep_name;
+    const fs::path csv_path = out / sweep_name;
     {
-      std::ofstream f(csv);
-      if (!f)
-        fail("cannot write " + csv.string());
-      f << std::setprecision(10);
-      f << "lambda,configuration,objective,step_ratio_upper_bound,clearance_ratio,step_ratio,"
-           "stiffness_dimensionless,leakage_dimensionless,stiffness_ratio_to_straight,"
-           "leakage_ratio_to_straight\n";
+      const std::string none = csv::dimensionless;
+      csv::Writer f({{"lambda", none},
+                     {"configuration", ""},
+                     {"objective", ""},
+                     {"step_ratio_upper_bound", none},
+                     {"clearance_ratio", none},
+                     {"step_ratio", none},
+                     {"stiffness_dimensionless", none},
+                     {"leakage_dimensionless", none},
+                     {"stiffness_ratio_to_straight", none},
+                     {"leakage_ratio_to_straight", none}});
       for (const SweepRow &row : lambda_sweep(c))
-        f << row.lambda << ',' << row.configuration << ',' << row.objective << ',' << row.bound
-          << ',' << row.H << ',' << row.gamma << ',' << row.K << ',' << row.M << ',' << row.K_ratio
-          << ',' << row.M_ratio << '\n';
+        f.add_row({row.lambda, row.configuration, row.objective, row.bound, row.H, row.gamma, row.K,
+                   row.M, row.K_ratio, row.M_ratio});
+      f.write(output_directory, sweep_name);
     }
     sweep_file = sweep_name;
     const fs::path png = out / "annular_lambda_sweep.png";
     const PlotResult plot =
-        run_plot_script("plot_annular.py", {csv.string(), png.string()}, png.string());
+        run_plot_script("plot_annular.py", {csv_path.string(), png.string()}, png.string());
     plot_command = plot.command;
     if (plot.made)
       plot_file = png.filename().string();

@@ -1,4 +1,5 @@
 #include <sealfe/coefficients/coefficient_table.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/numerics/lagrange_interpolation.h>
 
 #include <algorithm>
@@ -141,7 +142,7 @@ std::vector<std::pair<std::string, std::string>> output_columns(const bool with_
                                                         {"min_film", "m"},
                                                         {"max_pressure", "Pa"},
                                                         {"min_pressure", "Pa"},
-                                                        {"cavitated_fraction", "-"}};
+                                                        {"cavitated_fraction", csv::dimensionless}};
   for (const bool stiffness : {true, false})
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
@@ -152,26 +153,24 @@ std::vector<std::pair<std::string, std::string>> output_columns(const bool with_
         for (unsigned int j = 0; j < 3; ++j)
           c.emplace_back("err_" + coefficient_name(stiffness, i, j),
                          coefficient_unit(stiffness, i, j));
-  c.emplace_back("dofs", "-");
+  c.emplace_back("dofs", csv::dimensionless);
   return c;
 }
 
 std::string header(const bool with_errors)
 {
-  std::string h = "index [-],role";
+  std::vector<csv::Column> c = {{"index", csv::dimensionless}, {"role", ""}};
   for (const auto &[name, unit] : OperatingPoint::columns())
-    h += "," + name + " [" + unit + "]";
+    c.push_back({name, unit});
   for (const auto &[name, unit] : output_columns(with_errors))
-    h += "," + name + " [" + unit + "]";
-  return h + ",status";
+    c.push_back({name, unit});
+  c.push_back({"status", ""});
+  return csv::header(c);
 }
 
 std::string sanitize(const std::string &message)
 {
-  std::string s;
-  for (const char c : message)
-    s += (c == ',' ? ';' : (c == '"' ? '\'' : ((c == '\n' || c == '\r') ? ' ' : c)));
-  return s;
+  return csv::text_field(message);
 }
 } // namespace coefficient_table_format
 

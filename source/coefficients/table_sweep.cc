@@ -1,6 +1,7 @@
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/coefficients/table_resume.h>
 #include <sealfe/coefficients/table_sweep.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/io/interrupt.h>
 #include <sealfe/io/output.h>
 #include <sealfe/numerics/number_lists.h>
@@ -94,9 +95,7 @@ const std::vector<std::pair<std::string, std::string>> &sweepable()
 /// file and the reader sees the exact values).
 std::string number(const double v)
 {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  return std::string(buffer, result.ptr);
+  return csv::number(v);
 }
 
 std::string describe(const OperatingPoint &p, const SweepPlan &plan)

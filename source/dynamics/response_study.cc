@@ -1,5 +1,6 @@
 #include <sealfe/dynamics/response_study.h>
 #include <sealfe/dynamics/seal_dynamics_input.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/io/python_plot.h>
 
 #include <cmath>
@@ -80,17 +81,21 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   const double limit = input.contact_tilt();
   const double C0 = input.geometry.clearance, ro = input.geometry.outer_radius;
 
-  const std::string csv = "response.csv";
-  std::ofstream out(output_directory + "/" + csv);
-  if (!out)
-    throw std::runtime_error("Forced response: cannot write " + output_directory + "/" + csv);
-  out << "# steady-state response to the misalignments; tilts in rad (largest magnitude over "
-         "time), phase in degrees of the synchronous relative tilt against the rotor angle, "
-         "speeds in rad/s; stable = 0: the response is not reached (an unstable mode grows)\n";
-  out << "swept_speed,rotor_speed,stator_speed,stator_tilt,rotor_tilt,relative_tilt,"
-         "relative_tilt_synchronous,relative_tilt_phase_deg,relative_tilt_static,"
-         "normalized_relative_tilt,contact_tilt,contact_margin,stable\n";
-  out.precision(10);
+  const std::string csv_name = "response.csv";
+  const std::string rad = "rad", speed = "rad/s", none = csv::dimensionless;
+  csv::Writer table({{"swept_speed", speed},
+                     {"rotor_speed", speed},
+                     {"stator_speed", speed},
+                     {"stator_tilt", rad},
+                     {"rotor_tilt", rad},
+                     {"relative_tilt", rad},
+                     {"relative_tilt_synchronous", rad},
+                     {"relative_tilt_phase", "deg"},
+                     {"relative_tilt_static", rad},
+                     {"normalized_relative_tilt", none},
+                     {"contact_tilt", rad},
+                     {"contact_margin", rad},
+                     {"stable", none}});
   std::vector<double> speeds;
   std::vector<bool> contact, unstable;
   double peak = -1, speed_at_peak = 0, min_margin = INFINITY;
@@ -107,10 +112,9 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     const std::complex<double> sync_vec = (wr >= 0) ? sync.forward : sync.backward;
     const double phase = (wr != 0.0 && sync_amp > 0) ? std::arg(sync_vec) * 180 / M_PI : 0.0;
     const bool stable = dynamics.is_stable(wr, ws);
-    out << w << "," << wr << "," << ws << "," << ForcedResponse::max_magnitude(r.stator_tilt) << ","
-        << ForcedResponse::max_magnitude(r.rotor_tilt) << "," << rel << "," << sync_amp << ","
-        << phase << "," << std::abs(stat.forward) << "," << rel * ro / C0 << "," << limit << ","
-        << limit - rel << "," << int(stable) << "\n";
+    table.add_row({w, wr, ws, ForcedResponse::max_magnitude(r.stator_tilt),
+                   ForcedResponse::max_magnitude(r.rotor_tilt), rel, sync_amp, phase,
+                   std::abs(stat.forward), rel * ro / C0, limit, limit - rel, stable});
     speeds.push_back(w);
     contact.push_back(rel > limit);
     unstable.push_back(!stable);
@@ -121,9 +125,16 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     }
     min_margin = std::min(min_margin, limit - rel);
   }
-  out.close();
+  table.write(output_directory, csv_name);
 
   nlohmann::json summary;
+  summary["csv_notes"] = {
+      {csv_name,
+       "steady-state response to the misalignments: tilts are the largest magnitude over time; "
+       "relative_tilt_phase is the phase of the synchronous relative tilt against the rotor "
+       "angle; normalized_relative_tilt = relative_tilt ro / C0; contact_margin = contact_tilt - "
+       "relative_tilt (negative: face contact); stable = 0: the response is not reached (an "
+       "unstable mode grows)"}};
   summary["configuration"] = to_string(input.configuration);
   const FilmCoefficients fc =
       dynamics.film_coefficients(input.operating.rotor_speed, input.operating.stator_speed);
@@ -152,7 +163,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
           ? nlohmann::json(std::sqrt(rotor.support_stiffness /
                                      (rotor.transverse_inertia - rotor.polar_inertia)))
           : nlohmann::json(nullptr);
-  nlohmann::json files = {csv};
+  nlohmann::json files = {csv_name};
   summary["plot"] = nullptr;
   if (want_plot)
   {

@@ -1,7 +1,9 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
 #include <sealfe/dynamics/stability_study.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/numerics/number_lists.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -54,6 +56,42 @@ struct Sweep
   unsigned int n;
   AngularSealDynamics::Criterion criterion;
 };
+
+/// SI unit of one of SealDynamicsInput::parameter_names() ("Clearance": "m"), for the CSV header.
+std::string parameter_unit(const std::string &name)
+{
+  auto ends = [&](const std::string &tail)
+  {
+    return name.size() >= tail.size() &&
+           name.compare(name.size() - tail.size(), tail.npos, tail) == 0;
+  };
+  if (name == "Clearance" || ends("radius"))
+    return "m";
+  if (name == "Coning")
+    return "rad";
+  if (ends("pressure"))
+    return "Pa";
+  if (name == "Viscosity")
+    return "Pa s";
+  if (ends("speed"))
+    return "rad/s";
+  if (ends("inertia"))
+    return "kg m^2";
+  if (ends("stiffness"))
+    return "N m/rad";
+  if (ends("damping"))
+    return "N m s/rad";
+  throw std::runtime_error("no unit for the parameter '" + name + "'");
+}
+
+/// Column name of one of SealDynamicsInput::parameter_names(): lower case, '_' for spaces.
+std::string parameter_column(const std::string &name)
+{
+  std::string c;
+  for (const char ch : name)
+    c += ch == ' ' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return c;
+}
 
 /// The stable interval that contains the swept ring's current speed, else the widest one.
 nlohmann::json pick_range(const std::vector<AngularSealDynamics::SpeedInterval> &intervals,
@@ -191,40 +229,41 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   }
 
   // growth rate along the swept speed
-  nlohmann::json files = nlohmann::json::array();
+  nlohmann::json files = nlohmann::json::array(), notes = nlohmann::json::object();
   {
     const std::string name = "stability_growth_rate.csv";
-    std::ofstream out(output_directory + "/" + name);
-    if (!out)
-      throw std::runtime_error("Stability: cannot write " + output_directory + "/" + name);
-    out << "# growth rate max Re(lambda) (1/s) of the least stable mode against the "
-        << (swept_rotor ? "rotor" : "stator") << " speed (rad/s); other ring at " << fixed
-        << " rad/s\n";
-    out << "swept_speed,rotor_speed,stator_speed,growth_rate,stable\n";
-    out.precision(10);
+    csv::Writer table({{"swept_speed", "rad/s"},
+                       {"rotor_speed", "rad/s"},
+                       {"stator_speed", "rad/s"},
+                       {"growth_rate", "1/s"},
+                       {"stable", csv::dimensionless}});
     for (unsigned int i = 0; i < sweep.n; ++i)
     {
       const double w = sweep.from + (sweep.to - sweep.from) * i / (sweep.n - 1);
       const double r = swept_rotor ? w : fixed, s = swept_rotor ? fixed : w;
-      out << w << "," << r << "," << s << "," << dynamics.growth_rate(r, s) << ","
-          << dynamics.is_stable(r, s) << "\n";
+      table.add_row({w, r, s, dynamics.growth_rate(r, s), dynamics.is_stable(r, s)});
     }
+    table.write(output_directory, name);
+    notes[name] = "growth rate max Re(lambda) of the least stable mode against the " +
+                  std::string(swept_rotor ? "rotor" : "stator") + " speed; the other ring at " +
+                  numerics::to_prm_string(fixed) + " rad/s; stable = 1: every mode decays";
     files.push_back(name);
   }
 
   if (second != "none")
   {
     const std::string name = "stability_sweep.csv";
-    std::ofstream out(output_directory + "/" + name);
-    if (!out)
-      throw std::runtime_error("Stability: cannot write " + output_directory + "/" + name);
-    out << "# stable range of the " << (swept_rotor ? "rotor" : "stator")
-        << " speed (rad/s) against " << second
-        << " (SI); range = the stable interval containing the operating speed, else the widest; "
-           "empty = no stable speed in the sweep\n";
-    out << "value,stable_low,stable_high,low_at_search_limit,high_at_search_limit,"
-           "stable_intervals\n";
-    out.precision(10);
+    csv::Writer csv_table({{parameter_column(second), parameter_unit(second)},
+                           {"stable_low", "rad/s"},
+                           {"stable_high", "rad/s"},
+                           {"low_at_search_limit", csv::dimensionless},
+                           {"high_at_search_limit", csv::dimensionless},
+                           {"stable_interval_count", csv::dimensionless}});
+    notes[name] = "stable range [stable_low, stable_high] of the " +
+                  std::string(swept_rotor ? "rotor" : "stator") + " speed against " + second +
+                  ": the stable interval containing the operating speed, else the widest; empty "
+                  "fields: no stable speed in the sweep; *_at_search_limit = 1: that end is the "
+                  "edge of the sweep, not a threshold";
     nlohmann::json table = nlohmann::json::array();
     for (const double v : values)
     {
@@ -248,23 +287,18 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       bool ok = false;
       nlohmann::json lim;
       const nlohmann::json range = pick_range(iv, c, ok, lim);
-      auto bound = [&](const int k)
-      {
-        std::ostringstream b;
-        b.precision(10);
-        if (ok)
-          b << range[k].get<double>();
-        return b.str();
-      };
-      out << v << "," << bound(0) << "," << bound(1) << "," << (ok ? int(lim[0].get<bool>()) : 0)
-          << "," << (ok ? int(lim[1].get<bool>()) : 0) << "," << iv.size() << "\n";
+      auto bound = [&](const int k) { return ok ? csv::number(range[k].get<double>()) : ""; };
+      csv_table.add_row({v, bound(0), bound(1), ok && lim[0].get<bool>(), ok && lim[1].get<bool>(),
+                         static_cast<unsigned int>(iv.size())});
       table.push_back({{"value", v}, {"stable_range", range}});
     }
+    csv_table.write(output_directory, name);
     summary["second_parameter"] = second;
     summary["second_parameter_sweep"] = table;
     files.push_back(name);
   }
   summary["files"] = files;
+  summary["csv_notes"] = notes;
   return summary;
 }
 } // namespace stability

@@ -6,6 +6,7 @@
 #include <sealfe/dynamics/transient_study.h>
 #include <sealfe/film/cavitation.h>
 #include <sealfe/film/film_output.h>
+#include <sealfe/io/csv.h>
 #include <sealfe/io/interrupt.h>
 #include <sealfe/io/output.h>
 #include <sealfe/io/python_plot.h>
@@ -305,23 +306,53 @@ namespace
 {
 std::string csv_text(const std::vector<TransientSample> &rows)
 {
-  std::ostringstream out;
-  out << "time [s],rotor speed [rad/s],inner pressure [Pa],outer pressure [Pa],Z [m],"
-         "stator tilt [rad],stator precession [rad],relative tilt [rad],coning [rad],"
-         "min film [m],min film/sigma [-],heating film [m],film force [N],contact force [N],"
-         "closing force [N],film moment x [N m],film moment y [N m],contact moment x [N m],"
-         "contact moment y [N m],leakage inner [m^3/s],friction torque [N m],"
-         "leaked volume [m^3]\n";
-  out.precision(10);
+  const std::string none = csv::dimensionless;
+  csv::Writer out({{"time", "s"},
+                   {"rotor_speed", "rad/s"},
+                   {"inner_pressure", "Pa"},
+                   {"outer_pressure", "Pa"},
+                   {"axial_offset", "m"},
+                   {"stator_tilt", "rad"},
+                   {"stator_precession", "rad"},
+                   {"relative_tilt", "rad"},
+                   {"coning", "rad"},
+                   {"min_film", "m"},
+                   {"min_film_over_sigma", none},
+                   {"heating_film", "m"},
+                   {"film_force", "N"},
+                   {"contact_force", "N"},
+                   {"closing_force", "N"},
+                   {"film_moment_x", "N m"},
+                   {"film_moment_y", "N m"},
+                   {"contact_moment_x", "N m"},
+                   {"contact_moment_y", "N m"},
+                   {"leakage_inner", "m^3/s"},
+                   {"friction_torque", "N m"},
+                   {"leaked_volume", "m^3"}});
   for (const auto &s : rows)
-    out << s.time << "," << s.rotor_speed << "," << s.inner_pressure << "," << s.outer_pressure
-        << "," << s.axial_offset << "," << s.stator_tilt() << "," << s.stator_precession() << ","
-        << s.relative_tilt << "," << s.coning << "," << s.min_film << "," << s.min_film_over_sigma
-        << "," << s.heating_film << "," << s.film_force << "," << s.contact_force << ","
-        << s.closing_force << "," << s.film_moment_x << "," << s.film_moment_y << ","
-        << s.contact_moment_x << "," << s.contact_moment_y << "," << s.leakage_inner << ","
-        << s.friction_torque << "," << s.leaked_volume << "\n";
-  return out.str();
+    out.add_row({s.time,
+                 s.rotor_speed,
+                 s.inner_pressure,
+                 s.outer_pressure,
+                 s.axial_offset,
+                 s.stator_tilt(),
+                 s.stator_precession(),
+                 s.relative_tilt,
+                 s.coning,
+                 s.min_film,
+                 s.min_film_over_sigma,
+                 s.heating_film,
+                 s.film_force,
+                 s.contact_force,
+                 s.closing_force,
+                 s.film_moment_x,
+                 s.film_moment_y,
+                 s.contact_moment_x,
+                 s.contact_moment_y,
+                 s.leakage_inner,
+                 s.friction_torque,
+                 s.leaked_volume});
+  return out.text();
 }
 
 nlohmann::json sample_json(const TransientSample &s)
@@ -458,6 +489,13 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
       s["plot_note"] = plot.note;
   }
   s["files"] = files;
+  s["csv_notes"] = {
+      {"transient.csv",
+       "one row per Output interval: axial_offset = Z (Green 2002 Eq. 26, positive opening the "
+       "film); stator_tilt and stator_precession are the magnitude and direction of the stator's "
+       "tilt vector; min_film_over_sigma = min film / combined roughness sigma; heating_film is "
+       "the film thickness that drives thermal coning; leakage_inner is the flow out through "
+       "r = ri; leaked_volume its time integral"}};
   if (!result.complete)
   {
     throw output::IncompleteRun("transient: " + result.stop_reason +

@@ -5,6 +5,8 @@
 // directory overridden), so the examples themselves stay untouched.
 #include <gtest/gtest.h>
 
+#include <sealfe/io/csv.h>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -72,6 +74,47 @@ void expect_matches(const json &reference, const json &value, const double relat
     EXPECT_EQ(value, reference) << what;
 }
 
+/// doc/csv.md: one header line of `name [unit]` fields (text columns: the bare name), no comment
+/// lines, the same number of fields in every row, numbers wherever the header gives a unit, so
+/// that a plain pandas.read_csv(file) gives numeric columns with units in their names.
+void expect_csv_convention(const fs::path &file)
+{
+  const std::set<std::string> text_columns = {"role", "status", "configuration", "objective"};
+  std::ifstream in(file);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line)) << file;
+  const std::vector<std::string> header = split(line);
+  std::vector<bool> numeric;
+  for (const std::string &h : header)
+  {
+    const auto open = h.find(" [");
+    const bool text = text_columns.count(h) > 0;
+    EXPECT_TRUE(text ||
+                (open != std::string::npos && open > 0 && h.back() == ']' && h.size() > open + 3))
+        << file.filename() << ": header field '" << h << "' is not 'name [unit]'";
+    EXPECT_EQ(h.find_first_of("# \t", 0), text ? std::string::npos : open) << h;
+    numeric.push_back(!text);
+  }
+  unsigned int rows = 0;
+  while (std::getline(in, line))
+  {
+    ++rows;
+    std::vector<std::string> cells = split(line);
+    if (!line.empty() && line.back() == ',')
+      cells.emplace_back();
+    ASSERT_EQ(cells.size(), header.size()) << file.filename() << " row " << rows << ": " << line;
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      if (numeric[c] && !cells[c].empty()) // empty: a missing value (NaN for pandas)
+      {
+        char *end = nullptr;
+        std::strtod(cells[c].c_str(), &end);
+        EXPECT_EQ(end, cells[c].c_str() + cells[c].size())
+            << file.filename() << " row " << rows << " " << header[c] << " = '" << cells[c] << "'";
+      }
+  }
+  EXPECT_GT(rows, 0u) << file;
+}
+
 class PrmExample : public ::testing::TestWithParam<std::string>
 {
 };
@@ -95,7 +138,14 @@ TEST_P(PrmExample, RunsAndKeepsItsPinnedResults)
   for (const auto &file : reference["output_files"])
     EXPECT_TRUE(fs::exists(out / file.get<std::string>())) << file;
 
+  for (const auto &e : fs::directory_iterator(out))
+    if (e.path().extension() == ".csv")
+      expect_csv_convention(e.path());
+
   const json summary = json::parse(read(out / "summary.json"));
+  // every summary names the version and git revision that wrote it
+  EXPECT_EQ(summary.value("version", ""), SEALFE_VERSION);
+  EXPECT_FALSE(summary.value("git_revision", "").empty());
   for (const auto &pin : reference["values"])
   {
     const double tolerance = pin["relative_tolerance"];
@@ -137,4 +187,21 @@ TEST(PrmExamples, EveryExampleHasAReference)
   }
   EXPECT_EQ(examples, references);
   EXPECT_EQ(examples.size(), 9u); // the instantiation above lists them
+}
+
+// The numbers of every CSV read back to the same double, in the shortest text that does.
+TEST(CsvConvention, NumbersReadBackExactly)
+{
+  using sealfe::csv::number;
+  for (const double v : {0.1, 1.0 / 3.0, -443.67238978513905, 1e-300, 6.02214076e23, 0.0, 5e-324,
+                         1.7976931348623157e308})
+    EXPECT_EQ(std::strtod(number(v).c_str(), nullptr), v) << number(v);
+  EXPECT_EQ(number(0.1), "0.1");
+  EXPECT_EQ(number(2.5e-8), "2.5e-08");
+  EXPECT_EQ(sealfe::csv::header({{"force_z", "N"}, {"role", ""}, {"index", "-"}}),
+            "force_z [N],role,index [-]");
+  sealfe::csv::Writer w({{"a", "m"}, {"b", ""}});
+  w.add_row({1.5, "x, y"});
+  EXPECT_EQ(w.text(), "a [m],b\n1.5,x; y\n");
+  EXPECT_THROW(w.add_row({1.0}), std::logic_error);
 }

@@ -43,7 +43,7 @@ TEST(SolveOutput, SummaryKeysAndDefaultSeal)
   for (const char *key :
        {"force_z", "moment_x", "moment_y", "moment_restoring", "moment_transverse", "leakage_inner",
         "leakage_outer", "friction_torque", "min_film", "max_pressure", "min_pressure", "dofs",
-        "wall_time", "error_estimate", "cavitated_fraction"})
+        "wall_time", "error_estimate", "cavitated_fraction", "version", "git_revision"})
     EXPECT_TRUE(s.contains(key)) << key;
   for (const char *key : {"force_z", "moment_x", "moment_y", "leakage_inner"})
     EXPECT_TRUE(s["error_estimate"].contains(key)) << key;
@@ -57,6 +57,17 @@ TEST(SolveOutput, SummaryKeysAndDefaultSeal)
               1e-10 * s["leakage_inner"].get<double>());
   EXPECT_TRUE(fs::exists(out / "used_parameters.prm"));
   EXPECT_TRUE(fs::exists(out / "solution.pvd"));
+
+  // `sealfe --version` names the CMake project version and the git revision the summary has
+  EXPECT_EQ(s["version"], SEALFE_VERSION);
+  const std::string revision = s["git_revision"];
+  EXPECT_FALSE(revision.empty());
+  const fs::path log = out.parent_path() / "version";
+  ASSERT_EQ(std::system((std::string(SEALFE_BINARY) + " --version > " + log.string()).c_str()), 0);
+  std::ifstream version(log);
+  std::string line;
+  std::getline(version, line);
+  EXPECT_EQ(line, "sealfe " SEALFE_VERSION " (git " + revision + ")");
 }
 
 TEST(SolveOutput, VtuHasFieldsOnCurvedGeometry)
@@ -107,4 +118,33 @@ TEST(SolveOutput, VtuHasFieldsOnCurvedGeometry)
   EXPECT_LT(max_outside, 1e-8);
   EXPECT_NEAR(min_r, 0.0355, 1e-8);
   EXPECT_NEAR(max_r, 0.0408, 1e-8);
+}
+
+// Every sub-command writes into its own default directory, sealfe-output/<sub-command>, so that
+// one run never replaces the summary.json of another (annular used to overwrite solve's).
+TEST(SolveOutput, EachSubCommandHasItsOwnDefaultDirectory)
+{
+  const fs::path dir = fs::temp_directory_path() / "sealfe_regression_default_directory";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // (--print-parameters starts the program once per sub-command: three of them suffice)
+  for (const std::string command : {"solve", "annular", "transient"})
+  {
+    const fs::path listing = dir / (command + ".prm");
+    ASSERT_EQ(std::system((std::string(SEALFE_BINARY) + " --print-parameters " + command + " > " +
+                           listing.string())
+                              .c_str()),
+              0);
+    std::ifstream in(listing);
+    std::string line;
+    bool found = false;
+    while (std::getline(in, line))
+      found = found || line == "set Output directory = sealfe-output/" + command;
+    EXPECT_TRUE(found) << command;
+  }
+  // a bare run (no prm) from dir: the default directory is relative to the working directory
+  const std::string cmd = "cd " + dir.string() + " && " + SEALFE_BINARY + " equilibrium > log 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_TRUE(fs::exists(dir / "sealfe-output" / "equilibrium" / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "sealfe-output" / "summary.json"));
 }

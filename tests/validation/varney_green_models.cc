@@ -313,21 +313,21 @@ TEST(ResponseSubcommand, ExamplePrmFindsContactAroundTheCriticalSpeed)
   EXPECT_LT(j["contact_speed_ranges"][0][0].get<double>(), w);
   EXPECT_GT(j["contact_speed_ranges"][0][1].get<double>(), w);
   EXPECT_EQ(j["unstable_speed_ranges"].size(), 0u);
-  // the CSV has one row per speed and the columns the plot script reads
+  // the CSV (doc/csv.md: one header line of `name [unit]`, no comment lines) has one row per
+  // speed and the columns the plot script reads
   std::ifstream csv(dir / "response.csv");
   std::string line, header;
+  std::getline(csv, header);
   unsigned int rows = 0;
   while (std::getline(csv, line))
-    if (!line.empty() && line[0] != '#')
-    {
-      if (header.empty())
-        header = line;
-      else
-        ++rows;
-    }
+  {
+    EXPECT_NE(line[0], '#');
+    ++rows;
+  }
   EXPECT_EQ(rows, 500u);
-  for (const char *column : {"swept_speed", "relative_tilt", "relative_tilt_phase_deg",
-                             "contact_margin", "contact_tilt", "stable"})
+  for (const char *column :
+       {"swept_speed [rad/s]", "relative_tilt [rad]", "relative_tilt_phase [deg]",
+        "contact_margin [rad]", "contact_tilt [rad]", "stable [-]"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
 }
 
