@@ -53,16 +53,23 @@ NarrowSealFilm full_film(const FlexibleStatorSeal &seal)
   return NarrowSealFilm(seal.geometry, seal.conditions, q, Cavitation::none);
 }
 
-/// The FMS of the linear model: the stator ring of the transient, the film linearised at the
-/// axial equilibrium (aligned faces).
-AngularSealDynamics linear_fms(const FlexibleStatorSeal &seal, const FilmForceModel &film,
-                               double runout)
+/// The film state of constant_seal()'s conditions (aligned, at C0 until an offset is set).
+FilmState constant_state(const FlexibleStatorSeal &seal)
 {
   FilmState s;
   s.rotor_speed = omega;
   s.inner_pressure = 1e5;
   s.outer_pressure = 5e5;
   s.coning = seal.geometry.coning;
+  return s;
+}
+
+/// The FMS of the linear model: the stator ring of the transient, the film linearised at the
+/// axial equilibrium (aligned faces).
+AngularSealDynamics linear_fms(const FlexibleStatorSeal &seal, const FilmForceModel &film,
+                               double runout)
+{
+  FilmState s = constant_state(seal);
   s.axial_offset = solve_equilibrium(seal, film, s).axial_offset;
   const FilmCoefficients k = central_difference_coefficients(
       film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
@@ -96,11 +103,7 @@ TEST(Green2002Linearisation, TiltTransientDecaysAtTheLeastDampedEigenvalue)
       *std::max_element(eig.begin(), eig.end(), [](auto a, auto b) { return a.real() < b.real(); });
   ASSERT_LT(lambda.real(), 0);
 
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   TransientSettings settings;
   settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
   settings.initial_tilt = 1e-7; // 4e-9 m at ro against a 0.8 um film: linear
@@ -148,11 +151,7 @@ TEST(Green2002Linearisation, RunoutTrackingEqualsTheLinearForcedResponse)
   for (const auto &l : eig)
     slowest = std::max(slowest, l.real());
 
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   TransientSettings settings;
   settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
   settings.relative_tolerance = 1e-9;
@@ -189,11 +188,7 @@ TEST(VarneyGreen2017Transient, FlexibleRotorTrackingEqualsTheLinearForcedRespons
   seal.rotor.dynamic_misalignment = 2e-6; // (I_tr - I_pr) chi omega^2 ~ K_r chi_s at 1500 rad/s
   const auto film = full_film(seal);
 
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   s.axial_offset = solve_equilibrium(seal, film, s).axial_offset;
   const FilmCoefficients k = central_difference_coefficients(
       film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
@@ -242,11 +237,7 @@ namespace
 /// The transient's equations at the constant conditions of constant_seal().
 TransientSettings steady_settings(const FlexibleStatorSeal &seal, const FilmForceModel &film)
 {
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   TransientSettings settings;
   settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
   return settings;
@@ -270,11 +261,7 @@ TEST(Green2002Equilibrium, TiltedBalanceIsTheLinearStaticsOfTheMisalignment)
   const StatorTransient transient(seal, film, settings);
   const TransientState y = transient.steady_state(0, transient.initial_state());
 
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   s.axial_offset = settings.initial_axial_offset * C0;
   const FilmCoefficients k = central_difference_coefficients(
       film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
@@ -337,11 +324,7 @@ TEST(VarneyGreen2017Transient, AxiallyFlexibleRotorStatics)
   seal.rotor.axial_stiffness = 1e9; // N/m: the rotor gives 0.5 um under the ~500 N film force
   seal.rotor.mass = 2;
   const auto film = full_film(seal);
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   const double F_cls = seal.closing.value(ri, ro, 1e5, 5e5);
   const double K_sz = seal.stator.axial_stiffness, K_zr = seal.rotor.axial_stiffness;
   auto balance = [&](const double g)
@@ -387,11 +370,7 @@ TEST(VarneyGreen2017Transient, AxiallyFlexibleRotorDecaysAtTheLinearisedRoot)
   const TransientState y_eq =
       StatorTransient(seal, film, settings)
           .steady_state(0, StatorTransient(seal, film, settings).initial_state());
-  FilmState s;
-  s.rotor_speed = omega;
-  s.inner_pressure = 1e5;
-  s.outer_pressure = 5e5;
-  s.coning = seal.geometry.coning;
+  FilmState s = constant_state(seal);
   s.axial_offset = y_eq[0] - y_eq[12];
   const FilmCoefficients k = central_difference_coefficients(
       film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
