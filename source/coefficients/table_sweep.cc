@@ -13,6 +13,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -310,6 +311,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   // after the same round with whole rows.
   std::string my_rows;
   double my_time = 0;
+  unsigned int my_points = 0;
   bool stopped = false;
   {
     for (std::size_t first = 0; first < todo.size(); first += n_ranks)
@@ -347,6 +349,11 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       my_time += seconds;
+      ++my_points;
+      // time left: this rank's mean time per point times the rounds still to come
+      const std::size_t rounds_left =
+          (todo.size() - std::min(todo.size(), first + n_ranks) + n_ranks - 1) / n_ranks;
+      const double left = my_time / my_points * rounds_left;
       std::ostringstream progress;
       progress.precision(3);
       progress << "sealfe table: point " << i + 1 << "/" << plan.points.size()
@@ -354,7 +361,10 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
                << describe(plan.points[i], plan) << ": "
                << (failure.empty() ? "ok"
                                    : "FAILED: " + coefficient_table_format::sanitize(failure))
-               << " (" << seconds << " s)\n";
+               << " (" << seconds << " s";
+      if (rounds_left > 0)
+        progress << ", ~" << std::setprecision(2) << left << " s left";
+      progress << ")\n";
       std::cerr << progress.str() << std::flush;
     }
   }
