@@ -9,7 +9,9 @@
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -414,11 +416,24 @@ void JFOSolver::solve()
   double mass_residual = 0, complementarity_residual = 0;
   bool converged = false;
   unsigned int it = 0;
+  // progress on stderr (rank 0) once a solve runs longer than 2 s, then every 2 s
+  const auto start = std::chrono::steady_clock::now();
+  auto last_report = start;
   for (; it < s.cavitation.maximum_iterations; ++it)
   {
     double merit = assemble(a, v, true);
     mass_residual = residual.l2_norm() / flow_scale;
     complementarity_residual = complementarity(a_owned, v_owned);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_report > std::chrono::seconds(2) &&
+        Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
+    {
+      std::cerr << "sealfe: JFO Newton iteration " << it << ", relative mass residual "
+                << mass_residual << ", complementarity " << complementarity_residual
+                << " (tolerance " << s.cavitation.tolerance << ", "
+                << std::chrono::duration<double>(now - start).count() << " s)" << std::endl;
+      last_report = now;
+    }
     if (mass_residual < s.cavitation.tolerance && complementarity_residual < s.cavitation.tolerance)
     {
       converged = true;
