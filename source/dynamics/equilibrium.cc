@@ -2,6 +2,7 @@
 
 #include <boost/math/tools/roots.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -115,5 +116,54 @@ SealEquilibrium solve_equilibrium(const FlexibleStatorSeal &seal, const FilmForc
   eq.contact = seal.contact.loads(state.apply(seal.geometry));
   eq.support_force = -seal.stator.axial_stiffness * eq.axial_offset;
   return eq;
+}
+SteadyWhirl solve_steady_whirl(const FlexibleStatorSeal &seal, const FilmForceModel &film,
+                               const TransientSettings &settings, const TransientState &guess)
+{
+  auto solve_at = [&](const double s, TransientState g, unsigned int *iterations)
+  {
+    FlexibleStatorSeal scaled = seal;
+    scaled.runout.tilt *= s;
+    scaled.rotor.angular.dynamic_misalignment *= s;
+    scaled.stator.initial_misalignment *= s;
+    const auto r = scaled.runout.vector(0);
+    g[8] = r[0];
+    g[9] = r[1];
+    return StatorTransient(scaled, film, settings).steady_state(0, g, iterations);
+  };
+  SteadyWhirl w;
+  w.state = guess;
+  double s_reached = 0, ds = 0.25;
+  while (s_reached < 1)
+  {
+    const double next = std::min(1.0, s_reached + ds);
+    unsigned int iterations = 0;
+    try
+    {
+      w.state = solve_at(next, w.state, &iterations);
+      w.newton_iterations += iterations;
+      ++w.continuation_steps;
+      s_reached = next;
+      ds = std::min(2 * ds, 0.25);
+    }
+    catch (NoSteadyState &)
+    {
+      throw;
+    }
+    catch (std::runtime_error &e)
+    {
+      ds /= 2;
+      if (ds < 1e-3)
+      {
+        std::ostringstream m;
+        m << "equilibrium: the steady whirl exists only up to " << s_reached
+          << " of the runout / misalignment forcing (a fold: beyond it the response jumps; "
+             "run `sealfe transient`). Last Newton failure: "
+          << e.what();
+        throw std::runtime_error(m.str());
+      }
+    }
+  }
+  return w;
 }
 } // namespace sealfe

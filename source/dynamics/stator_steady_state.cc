@@ -18,15 +18,15 @@ TransientState StatorTransient::steady_state(const double t, const TransientStat
                                              unsigned int *iterations) const
 {
   const bool whirl_forcing =
-      seal.runout.tilt > 0 || (seal.rotor.flexible && seal.rotor.dynamic_misalignment > 0);
+      seal.runout.tilt > 0 || (seal.rotor.flexible && seal.rotor.angular.dynamic_misalignment > 0);
   if (whirl_forcing && seal.stator.initial_misalignment > 0)
-    throw std::runtime_error(
+    throw NoSteadyState(
         "equilibrium: runout turns with the shaft while the stator misalignment is fixed in "
         "space: no steady state exists (set one of them to 0, or run `sealfe transient`)");
   if (whirl_forcing && !rotating)
-    throw std::runtime_error("equilibrium: runout needs Transient/Frame = auto or rotating");
+    throw NoSteadyState("equilibrium: runout needs Transient/Frame = auto or rotating");
   if (!whirl_forcing && seal.stator.initial_misalignment > 0 && rotating)
-    throw std::runtime_error(
+    throw NoSteadyState(
         "equilibrium: a stator misalignment needs Transient/Frame = auto or inertial");
 
   // unknowns and the rates that must vanish with them: Z'' = 0, a'' = 0 (a' = 0), beta' = 0,
@@ -80,7 +80,7 @@ TransientState StatorTransient::steady_state(const double t, const TransientStat
     dealii::Vector<double> step(n);
     J.vmult(step, r);
     // damped: halve the step until the residual falls
-    double lambda = 1, largest = 0;
+    double lambda = 1;
     TransientState next = y;
     dealii::Vector<double> r_next;
     for (int halving = 0; halving < 20; ++halving, lambda /= 2)
@@ -101,10 +101,11 @@ TransientState StatorTransient::steady_state(const double t, const TransientStat
     }
     if (r_next.size() != n)
       throw std::runtime_error("equilibrium: the tilted state left the film's range");
-    largest = lambda * step.linfty_norm();
     y = next;
     r = r_next;
-    if (largest < 1e-10)
+    // converged when the full Newton step (the distance to the root), not the damped one, is
+    // below 1e-10 of the state's scale
+    if (step.linfty_norm() < 1e-10)
       break;
   }
   if (iterations)

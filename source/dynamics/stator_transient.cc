@@ -2,12 +2,7 @@
 #include <sealfe/dynamics/equilibrium.h>
 #include <sealfe/dynamics/stator_transient.h>
 #include <sealfe/film/cavitation.h>
-
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/vector.h>
-#include <deal.II/sundials/arkode.h>
-
-#include <arkode/arkode_arkstep.h>
+#include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
 #include <cmath>
@@ -100,6 +95,7 @@ std::array<double, 2> RotorRunout::vector(const double shaft_angle) const
 void RotorRing::declare_parameters(dealii::ParameterHandler &prm)
 {
   using namespace dealii::Patterns;
+  using numerics::to_prm_string;
   const RotorRing d;
   prm.enter_subsection("Rotor ring");
   prm.declare_entry("Model", "rigid", Selection("rigid|flexible"),
@@ -107,23 +103,27 @@ void RotorRing::declare_parameters(dealii::ParameterHandler &prm)
                     "shaft (Green 2002). flexible: Varney & Green 2017 Eq. 5-6, the angular rotor "
                     "on the shaft's stiffness, held at the runout tilt as its static misalignment "
                     "chi_s (axially rigid).");
-  prm.declare_entry("Transverse inertia", std::to_string(d.transverse_inertia), Double(),
+  prm.declare_entry("Transverse inertia", to_prm_string(d.angular.transverse_inertia), Double(),
                     "I_tr (kg m^2), > 0 (Varney & Green 2017 Table 2).");
-  prm.declare_entry("Polar inertia", std::to_string(d.polar_inertia), Double(0),
+  prm.declare_entry("Polar inertia", to_prm_string(d.angular.polar_inertia), Double(0),
                     "I_pr (kg m^2): gyroscopic coupling I_pr omega.");
-  prm.declare_entry("Angular stiffness", "5e5", Double(0), "K_r (N m/rad), the shaft's.");
-  prm.declare_entry("Angular damping", "20", Double(0), "D_r (N m s/rad), external damping.");
-  prm.declare_entry("Rotating damping", "1", Double(0),
+  prm.declare_entry("Angular stiffness", to_prm_string(d.angular.support_stiffness), Double(0),
+                    "K_r (N m/rad), the shaft's.");
+  prm.declare_entry("Angular damping", to_prm_string(d.angular.support_damping), Double(0),
+                    "D_r (N m s/rad), external damping.");
+  prm.declare_entry("Rotating damping", to_prm_string(d.angular.rotating_damping), Double(0),
                     "D_omega_r (N m s/rad): damping that turns with the rotor (circulatory "
                     "stiffness omega D_omega_r).");
-  prm.declare_entry("Dynamic misalignment", "0", Double(0),
+  prm.declare_entry("Dynamic misalignment", to_prm_string(d.angular.dynamic_misalignment),
+                    Double(0),
                     "chi (rad): principal axes against the spin axis; forces (I_tr - I_pr) chi "
                     "omega^2 (Varney & Green 2017 Appendix A).");
-  prm.declare_entry("Axial stiffness", "0", Double(0),
+  prm.declare_entry("Axial stiffness", to_prm_string(d.axial_stiffness), Double(0),
                     "K_zr (N/m) of Varney & Green 2017 Eq. 7: > 0 makes the flexible rotor's "
                     "axial motion a state (the film gap is C0 + Z - u_zr); 0: axially rigid.");
-  prm.declare_entry("Axial damping", "0", Double(0), "D_zr (N s/m).");
-  prm.declare_entry("Mass", "1", Double(0), "m_r (kg), > 0 when Axial stiffness > 0.");
+  prm.declare_entry("Axial damping", to_prm_string(d.axial_damping), Double(0), "D_zr (N s/m).");
+  prm.declare_entry("Mass", to_prm_string(d.mass), Double(0),
+                    "m_r (kg), > 0 when Axial stiffness > 0.");
   prm.leave_subsection();
 }
 
@@ -131,12 +131,12 @@ void RotorRing::parse_parameters(dealii::ParameterHandler &prm)
 {
   prm.enter_subsection("Rotor ring");
   flexible = prm.get("Model") == "flexible";
-  transverse_inertia = prm.get_double("Transverse inertia");
-  polar_inertia = prm.get_double("Polar inertia");
-  angular_stiffness = prm.get_double("Angular stiffness");
-  angular_damping = prm.get_double("Angular damping");
-  rotating_damping = prm.get_double("Rotating damping");
-  dynamic_misalignment = prm.get_double("Dynamic misalignment");
+  angular.transverse_inertia = prm.get_double("Transverse inertia");
+  angular.polar_inertia = prm.get_double("Polar inertia");
+  angular.support_stiffness = prm.get_double("Angular stiffness");
+  angular.support_damping = prm.get_double("Angular damping");
+  angular.rotating_damping = prm.get_double("Rotating damping");
+  angular.dynamic_misalignment = prm.get_double("Dynamic misalignment");
   axial_stiffness = prm.get_double("Axial stiffness");
   axial_damping = prm.get_double("Axial damping");
   mass = prm.get_double("Mass");
@@ -148,11 +148,13 @@ void RotorRing::validate() const
   if (!flexible)
     return;
   std::ostringstream s;
-  if (!(transverse_inertia > 0) || !std::isfinite(transverse_inertia))
-    s << "Rotor ring: Transverse inertia must be > 0, got " << transverse_inertia << " kg m^2";
+  if (!(angular.transverse_inertia > 0) || !std::isfinite(angular.transverse_inertia))
+    s << "Rotor ring: Transverse inertia must be > 0, got " << angular.transverse_inertia
+      << " kg m^2";
   else
-    for (const double v : {polar_inertia, angular_stiffness, angular_damping, rotating_damping,
-                           dynamic_misalignment, axial_stiffness, axial_damping})
+    for (const double v :
+         {angular.polar_inertia, angular.support_stiffness, angular.support_damping,
+          angular.rotating_damping, angular.dynamic_misalignment, axial_stiffness, axial_damping})
       if (!(v >= 0) || !std::isfinite(v))
       {
         s << "Rotor ring: inertia, stiffness, damping and misalignment must be finite and >= 0, "
@@ -339,7 +341,7 @@ StatorTransient::StatorTransient(const FlexibleStatorSeal &seal, const FilmForce
               !(seal.runout.tilt == 0 && seal.stator.initial_misalignment > 0));
 }
 
-StatorTransient::Evaluation StatorTransient::evaluate(const double t, const State &y) const
+FilmState StatorTransient::film_state(const double t, const State &y) const
 {
   for (const double v : y)
     if (!std::isfinite(v))
@@ -351,10 +353,8 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
     m << "the faces opened without bound (Z = " << y[0] / seal.geometry.clearance << " C0)";
     throw std::runtime_error(m.str());
   }
-  Evaluation e;
   const double omega = seal.ramps.speed.value(t);
-  e.shaft_angle = seal.ramps.speed.integral(t);
-  FilmState &s = e.state;
+  FilmState s;
   // y[2..3] is the relative tilt a = a_s - a_r in the integration frame, y[4..5] its rate
   // there. The film needs the inertial rate: in the rotating frame that is a' + omega J a.
   s.tilt_x = y[2];
@@ -375,11 +375,20 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
     s.coning = y[6];
   else
     s.coning = quasi_static_coning(seal, s);
+  return s;
+}
+
+StatorTransient::Evaluation StatorTransient::evaluate(const double t, const State &y) const
+{
+  Evaluation e;
+  e.state = film_state(t, y);
+  e.shaft_angle = seal.ramps.speed.integral(t);
+  const FilmState &s = e.state;
   e.contact = seal.contact.loads(s.apply(seal.geometry));
   e.heating_film = seal.thermal.film == ThermalConing::Film::minimum
                        ? std::max(e.contact.min_film, 0.1 * seal.contact.composite_roughness())
                    : seal.thermal.film == ThermalConing::Film::centerline
-                       ? seal.geometry.clearance + y[0] - y[12]
+                       ? seal.geometry.clearance + s.axial_offset
                        : e.contact.heating_film;
   ++evaluations;
   e.film = film.loads(s);
@@ -388,27 +397,9 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   return e;
 }
 
-FilmState StatorTransient::film_state(const double t, const State &y) const
-{
-  return evaluate(t, y).state;
-}
-
 double StatorTransient::contact_margin(const double t, const State &y) const
 {
-  FilmState s;
-  s.tilt_x = y[2];
-  s.tilt_y = y[3];
-  s.axial_offset = y[0] - y[12];
-  s.rotor_speed = seal.ramps.speed.value(t);
-  s.inner_pressure = seal.ramps.inner_pressure.value(t);
-  s.outer_pressure = seal.ramps.outer_pressure.value(t);
-  s.time = t;
-  if (!seal.thermal.enabled())
-    s.coning = seal.geometry.coning;
-  else if (seal.thermal.time_constant > 0)
-    s.coning = y[6];
-  else
-    s.coning = quasi_static_coning(seal, s);
+  const FilmState s = film_state(t, y);
   const double closing = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
                                             s.inner_pressure, s.outer_pressure);
   return seal.contact.loads(s.apply(seal.geometry)).force - settings.contact_threshold * closing;
@@ -456,7 +447,7 @@ State StatorTransient::rate(const double t, const State &y) const
   {
     // Varney & Green 2017 Eq. 5-6: the film and contact moments act on the rotor with the
     // opposite sign; the shaft holds it at the runout chi_s (turning with it)
-    const RotorRing &rotor = seal.rotor;
+    const RingProperties &rotor = seal.rotor.angular;
     r = {{y[8], y[9]}};
     dr = {{y[10], y[11]}};
     const Vector2 v = inertial_rate(r, dr), Jv = quarter_turn(v), Jr = quarter_turn(r);
@@ -467,8 +458,8 @@ State StatorTransient::rate(const double t, const State &y) const
     Vector2 A;
     for (unsigned int i = 0; i < 2; ++i)
       A[i] =
-          (-film_moment[i] + rotor.polar_inertia * omega * Jv[i] - rotor.angular_damping * v[i] -
-           rotor.angular_stiffness * (r[i] - runout[i]) + omega * rotor.rotating_damping * Jr[i] +
+          (-film_moment[i] + rotor.polar_inertia * omega * Jv[i] - rotor.support_damping * v[i] -
+           rotor.support_stiffness * (r[i] - runout[i]) + omega * rotor.rotating_damping * Jr[i] +
            unbalance * (omega * omega * u[i] - omega_rate * Ju[i])) /
           rotor.transverse_inertia;
     ddr = frame_acceleration(A, r, dr);

@@ -156,63 +156,15 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   held.ramps.inner_pressure = Ramp{state.inner_pressure, state.inner_pressure, 0, 1e300, 1e300};
   TransientSettings settings;
   settings.parse_parameters(prm);
+  // no integration: the Transient subsection gives the frame; End time and Output interval are
+  // set only so that the checks of an integration that does not happen cannot refuse the run
   settings.end_time = 1;
   settings.output_interval = 1;
   TransientState guess{};
   guess[0] = eq.axial_offset;
   guess[6] = eq.coning;
-  // Continuation in the forcing from the axisymmetric balance: runout, dynamic and stator
-  // misalignment scaled by s from 0 to 1, each steady state the next one's Newton guess, the
-  // increment halved on a failure. This follows the branch that grows out of the linear
-  // response; a large whirl near a critical speed opens the faces and the branch can end in a
-  // fold (no steady state beyond it: the run says so).
-  auto scaled = [&](const double s)
-  {
-    FlexibleStatorSeal c = held;
-    c.runout.tilt *= s;
-    c.rotor.dynamic_misalignment *= s;
-    c.stator.initial_misalignment *= s;
-    return c;
-  };
-  auto solve_at = [&](const double s, TransientState g, unsigned int *its)
-  {
-    const FlexibleStatorSeal c = scaled(s);
-    const auto r = c.runout.vector(0);
-    g[8] = r[0];
-    g[9] = r[1];
-    return StatorTransient(c, *film, settings).steady_state(0, g, its);
-  };
-  unsigned int newton_iterations = 0, continuation_steps = 0;
-  TransientState y = guess;
-  double s_reached = 0, ds = 0.25;
-  while (s_reached < 1)
-  {
-    const double next = std::min(1.0, s_reached + ds);
-    unsigned int its = 0;
-    try
-    {
-      y = solve_at(next, y, &its);
-      newton_iterations += its;
-      ++continuation_steps;
-      s_reached = next;
-      ds = std::min(2 * ds, 0.25);
-    }
-    catch (std::runtime_error &e)
-    {
-      if (std::string(e.what()).find("no steady state") != std::string::npos)
-        throw;
-      ds /= 2;
-      if (ds < 1e-3)
-      {
-        std::ostringstream m;
-        m << "equilibrium: the steady whirl exists only up to " << s_reached
-          << " of the runout / misalignment forcing (a fold: beyond it the response jumps; "
-             "run `sealfe transient`). Last Newton failure: "
-          << e.what();
-        throw std::runtime_error(m.str());
-      }
-    }
-  }
+  const SteadyWhirl whirl = solve_steady_whirl(held, *film, settings, guess);
+  const TransientState &y = whirl.state;
   const StatorTransient steady(held, *film, settings);
   state = steady.film_state(0, y);
   const TransientSample at = steady.sample(0, y);
@@ -270,8 +222,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &)
   s["contact_moment_y"] = at.contact_moment_y;
   s["stator_axial_offset"] = y[0];
   s["rotor_axial_offset"] = y[12];
-  s["tilt_newton_iterations"] = newton_iterations;
-  s["tilt_continuation_steps"] = continuation_steps;
+  s["tilt_newton_iterations"] = whirl.newton_iterations;
+  s["tilt_continuation_steps"] = whirl.continuation_steps;
   s["tilts"] = "steady state of the transient's equations (tilts at t = 0, shaft angle 0; under "
                "runout the stator whirls with the shaft and these turn with it)";
   std::cout << "sealfe equilibrium: clearance " << seal.geometry.clearance + eq.axial_offset

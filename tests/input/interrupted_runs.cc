@@ -24,21 +24,24 @@ namespace
 using sealfe::testing::CliResult;
 using sealfe::testing::read_file;
 
-// A table of 2 x 120 + 1 points on a coarse mesh (about 10 ms a point): long enough to be
-// interrupted part-way, short enough to be computed whole in a test.
-const std::string table_body = R"(subsection Table
-  set Rotor speed     = 0 : 4000 : 120
-  set Clearance       = 1e-6, 1.25e-6
-  set Held-out points = 1
-  set Interpolation   = linear
-end
-subsection Discretization
+// The coarse mesh of every table here (about 10 ms a point).
+const std::string coarse_mesh = R"(subsection Discretization
   set Polynomial degree     = 1
   set Radial cells          = 4
   set Circumferential cells = 32
   set Error estimate        = false
 end
 )";
+
+// A table of 2 x 120 + 1 points: long enough to be interrupted part-way, short enough to be
+// computed whole in a test.
+const std::string table_body = R"(subsection Table
+  set Rotor speed     = 0 : 4000 : 120
+  set Clearance       = 1e-6, 1.25e-6
+  set Held-out points = 1
+  set Interpolation   = linear
+end
+)" + coarse_mesh;
 const std::string resume = "subsection Table\n  set Resume = true\nend\n";
 
 nlohmann::json summary(const fs::path &dir)
@@ -170,13 +173,7 @@ TEST(InterruptedRuns, ResumeWithAChangedParameterIsRefused)
   set Held-out points = 0
   set Interpolation   = linear
 end
-subsection Discretization
-  set Polynomial degree     = 1
-  set Radial cells          = 4
-  set Circumferential cells = 32
-  set Error estimate        = false
-end
-)";
+)" + coarse_mesh;
   ASSERT_EQ(sealfe::testing::run_sealfe(d, "table", small).status, 0);
   const auto before = snapshot(d / "out");
   const CliResult r = sealfe::testing::run_sealfe(

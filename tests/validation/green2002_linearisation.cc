@@ -64,10 +64,11 @@ FilmState constant_state(const FlexibleStatorSeal &seal)
   return s;
 }
 
-/// The FMS of the linear model: the stator ring of the transient, the film linearised at the
-/// axial equilibrium (aligned faces).
-AngularSealDynamics linear_fms(const FlexibleStatorSeal &seal, const FilmForceModel &film,
-                               double runout)
+/// The linear model of the transient's seal (`sealfe stability` / `sealfe response`): the FMS,
+/// on the flexible rotor if the seal has one, the film linearised at the axial equilibrium
+/// (aligned faces). The runout is the rotor's support misalignment chi_s (a rigid ring: its own
+/// tilt, turning with it).
+AngularSealDynamics linear_fms(const FlexibleStatorSeal &seal, const FilmForceModel &film)
 {
   FilmState s = constant_state(seal);
   s.axial_offset = solve_equilibrium(seal, film, s).axial_offset;
@@ -77,9 +78,30 @@ AngularSealDynamics linear_fms(const FlexibleStatorSeal &seal, const FilmForceMo
   stator.transverse_inertia = seal.stator.transverse_inertia;
   stator.support_stiffness = seal.stator.angular_stiffness;
   stator.support_damping = seal.stator.angular_damping;
-  rotor.support_misalignment = runout; // a rigid ring: its own tilt, turning with it (run-out)
-  return AngularSealDynamics(SealConfiguration::fms, rotor, stator,
-                             [k](double, double) { return k; });
+  if (seal.rotor.flexible)
+    rotor = seal.rotor.angular;
+  rotor.support_misalignment = seal.runout.tilt;
+  return AngularSealDynamics(seal.rotor.flexible ? SealConfiguration::fms_flexible_rotor
+                                                 : SealConfiguration::fms,
+                             rotor, stator, [k](double, double) { return k; });
+}
+
+/// Transient settings that start on the axial equilibrium of constant_seal()'s conditions.
+TransientSettings steady_settings(const FlexibleStatorSeal &seal, const FilmForceModel &film)
+{
+  TransientSettings settings;
+  settings.initial_axial_offset =
+      solve_equilibrium(seal, film, constant_state(seal)).axial_offset / C0;
+  return settings;
+}
+
+/// The largest real part of the linear model's eigenvalues at the test's speed (1/s).
+double slowest_root(const AngularSealDynamics &linear)
+{
+  double slowest = -std::numeric_limits<double>::infinity();
+  for (const auto &l : linear.eigenvalues(omega, 0))
+    slowest = std::max(slowest, l.real());
+  return slowest;
 }
 
 std::complex<double> stator_tilt(const TransientSample &x)
@@ -98,21 +120,17 @@ TEST(Green2002Linearisation, TiltTransientDecaysAtTheLeastDampedEigenvalue)
   FlexibleStatorSeal seal = constant_seal();
   seal.runout.tilt = 0;
   const auto film = full_film(seal);
-  const auto eig = linear_fms(seal, film, 0).eigenvalues(omega, 0);
+  const auto eig = linear_fms(seal, film).eigenvalues(omega, 0);
   const std::complex<double> lambda =
       *std::max_element(eig.begin(), eig.end(), [](auto a, auto b) { return a.real() < b.real(); });
   ASSERT_LT(lambda.real(), 0);
 
-  FilmState s = constant_state(seal);
-  TransientSettings settings;
-  settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
+  TransientSettings settings = steady_settings(seal, film);
   settings.initial_tilt = 1e-7; // 4e-9 m at ro against a 0.8 um film: linear
   settings.frame = "inertial";
   settings.order = 5; // accurate phase and amplitude of a lightly damped whirl at small steps
   settings.relative_tolerance = 1e-10;
   settings.absolute_tolerance = 1e-10;
-  // the fast mode (~ -4e8 1/s) is excited at t = 0: its first steps are far below 1e-12 s
-  settings.minimum_step = 1e-18;
   const double dt = 0.1 * 2 * M_PI / std::abs(lambda.imag());
   const double t0 = 50 / std::abs(lambda);  // many fast-mode decay times
   const double span = 0.1 / -lambda.real(); // the amplitude falls by 10 %
@@ -143,17 +161,12 @@ TEST(Green2002Linearisation, RunoutTrackingEqualsTheLinearForcedResponse)
   FlexibleStatorSeal seal = constant_seal();
   seal.runout.tilt = 1e-6; // 4e-8 m at ro against a 0.8 um film: linear
   const auto film = full_film(seal);
-  const AngularSealDynamics linear = linear_fms(seal, film, seal.runout.tilt);
+  const AngularSealDynamics linear = linear_fms(seal, film);
   const double expected =
       ForcedResponse::max_magnitude(linear.forced_response(omega, 0).relative_tilt);
-  const auto eig = linear.eigenvalues(omega, 0);
-  double slowest = -std::numeric_limits<double>::infinity();
-  for (const auto &l : eig)
-    slowest = std::max(slowest, l.real());
+  const double slowest = slowest_root(linear);
 
-  FilmState s = constant_state(seal);
-  TransientSettings settings;
-  settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
+  TransientSettings settings = steady_settings(seal, film);
   settings.relative_tolerance = 1e-9;
   settings.absolute_tolerance = 1e-9;
   // the stator starts at rest against a whirling rotor: the relative tilt rate excites the fast
@@ -180,41 +193,19 @@ TEST(VarneyGreen2017Transient, FlexibleRotorTrackingEqualsTheLinearForcedRespons
   FlexibleStatorSeal seal = constant_seal();
   seal.runout.tilt = 1e-6; // chi_s
   seal.rotor.flexible = true;
-  seal.rotor.transverse_inertia = 0.2; // Varney & Green 2017 Table 2
-  seal.rotor.polar_inertia = 0.1;
-  seal.rotor.angular_stiffness = 5e5;
-  seal.rotor.angular_damping = 20;
-  seal.rotor.rotating_damping = 1;
-  seal.rotor.dynamic_misalignment = 2e-6; // (I_tr - I_pr) chi omega^2 ~ K_r chi_s at 1500 rad/s
+  // Varney & Green 2017 Table 2's rotor (RotorRing's defaults: I_tr 0.2, I_pr 0.1 kg m^2, K_r
+  // 5e5 N m/rad, D_r 20, D_wr 1 N m s/rad); (I_tr - I_pr) chi omega^2 ~ K_r chi_s at 1500 rad/s
+  seal.rotor.angular.dynamic_misalignment = 2e-6;
   const auto film = full_film(seal);
 
-  FilmState s = constant_state(seal);
-  s.axial_offset = solve_equilibrium(seal, film, s).axial_offset;
-  const FilmCoefficients k = central_difference_coefficients(
-      film, s, s.apply(seal.geometry).minimum().value, seal.geometry.outer_radius);
-  RingProperties stator, rotor;
-  stator.transverse_inertia = seal.stator.transverse_inertia;
-  stator.support_stiffness = seal.stator.angular_stiffness;
-  stator.support_damping = seal.stator.angular_damping;
-  rotor.transverse_inertia = seal.rotor.transverse_inertia;
-  rotor.polar_inertia = seal.rotor.polar_inertia;
-  rotor.support_stiffness = seal.rotor.angular_stiffness;
-  rotor.support_damping = seal.rotor.angular_damping;
-  rotor.rotating_damping = seal.rotor.rotating_damping;
-  rotor.support_misalignment = seal.runout.tilt;
-  rotor.dynamic_misalignment = seal.rotor.dynamic_misalignment;
-  const AngularSealDynamics linear(SealConfiguration::fms_flexible_rotor, rotor, stator,
-                                   [k](double, double) { return k; });
+  const AngularSealDynamics linear = linear_fms(seal, film);
   const ForcedResponse response = linear.forced_response(omega, 0);
   const double expected_relative = ForcedResponse::max_magnitude(response.relative_tilt);
   const double expected_rotor = ForcedResponse::max_magnitude(response.rotor_tilt);
-  double slowest = -std::numeric_limits<double>::infinity();
-  for (const auto &l : linear.eigenvalues(omega, 0))
-    slowest = std::max(slowest, l.real());
+  const double slowest = slowest_root(linear);
   ASSERT_LT(slowest, 0);
 
-  TransientSettings settings;
-  settings.initial_axial_offset = s.axial_offset / C0;
+  TransientSettings settings = steady_settings(seal, film);
   settings.relative_tolerance = 1e-9;
   settings.absolute_tolerance = 1e-9;
   settings.minimum_step = 1e-18; // the fast mode is excited at t = 0 (see above)
@@ -231,18 +222,6 @@ TEST(VarneyGreen2017Transient, FlexibleRotorTrackingEqualsTheLinearForcedRespons
   EXPECT_NEAR(end.relative_tilt / expected_relative, 1, 0.01);
   EXPECT_NEAR(rotor_tilt / expected_rotor, 1, 0.01);
 }
-
-namespace
-{
-/// The transient's equations at the constant conditions of constant_seal().
-TransientSettings steady_settings(const FlexibleStatorSeal &seal, const FilmForceModel &film)
-{
-  FilmState s = constant_state(seal);
-  TransientSettings settings;
-  settings.initial_axial_offset = solve_equilibrium(seal, film, s).axial_offset / C0;
-  return settings;
-}
-} // namespace
 
 // The operating point with tilts (what `sealfe equilibrium` solves): a small stator misalignment g
 // fixed in space, no runout, no contact. Linear statics: the film's tilt stiffness K_f (2 x 2 with
@@ -291,13 +270,9 @@ TEST(Green2002Equilibrium, TransientSettlesOnTheTiltedBalance)
   const StatorTransient steady(seal, film, settings);
   const TransientState y = steady.steady_state(0, steady.initial_state());
 
-  const auto eig = linear_fms(seal, film, 0).eigenvalues(omega, 0);
-  double slowest = -std::numeric_limits<double>::infinity();
-  for (const auto &l : eig)
-    slowest = std::max(slowest, l.real());
+  const double slowest = slowest_root(linear_fms(seal, film));
   settings.relative_tolerance = 1e-9;
   settings.absolute_tolerance = 1e-9;
-  settings.minimum_step = 1e-18;
   settings.end_time = 20 / -slowest; // the start has decayed by e^-20
   settings.output_interval = settings.end_time;
   const StatorTransient transient(seal, film, settings);
@@ -367,9 +342,8 @@ TEST(VarneyGreen2017Transient, AxiallyFlexibleRotorDecaysAtTheLinearisedRoot)
   seal.rotor.mass = 2;
   const auto film = full_film(seal);
   TransientSettings settings = steady_settings(seal, film);
-  const TransientState y_eq =
-      StatorTransient(seal, film, settings)
-          .steady_state(0, StatorTransient(seal, film, settings).initial_state());
+  const StatorTransient balance(seal, film, settings);
+  const TransientState y_eq = balance.steady_state(0, balance.initial_state());
   FilmState s = constant_state(seal);
   s.axial_offset = y_eq[0] - y_eq[12];
   const FilmCoefficients k = central_difference_coefficients(
@@ -409,7 +383,6 @@ TEST(VarneyGreen2017Transient, AxiallyFlexibleRotorDecaysAtTheLinearisedRoot)
   settings.output_interval = t1;
   settings.relative_tolerance = 1e-10;
   settings.absolute_tolerance = 1e-10;
-  settings.minimum_step = 1e-18;
   const StatorTransient transient(seal, film, settings);
   const auto result = transient.run();
   ASSERT_TRUE(result.complete) << result.stop_reason;

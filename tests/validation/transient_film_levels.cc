@@ -85,15 +85,6 @@ std::map<std::string, std::vector<double>> read_csv(const std::string &text)
   return columns;
 }
 
-/// The first of `names` that the CSV has (column names differ between versions).
-const std::vector<double> &column(const std::map<std::string, std::vector<double>> &csv,
-                                  const std::vector<std::string> &names)
-{
-  for (const auto &n : names)
-    if (csv.count(n))
-      return csv.at(n);
-  throw std::runtime_error("transient.csv has no column " + names.front());
-}
 } // namespace
 
 // An axial creep at the reference conditions from a clearance of 0.24 um (the equilibrium is at
@@ -147,12 +138,10 @@ end
     runs[level] = read_csv(read_file(run_dir / "out" / "transient.csv"));
   }
   const auto &l1 = runs["table"], &l2 = runs["finite element"];
-  const auto &F1 = column(l1, {"film force", "film_force"}),
-             &F2 = column(l2, {"film force", "film_force"});
-  const auto &Q1 = column(l1, {"leakage inner", "leakage_inner"}),
-             &Q2 = column(l2, {"leakage inner", "leakage_inner"});
-  const auto &Z1 = column(l1, {"Z", "axial_offset"}), &Z2 = column(l2, {"Z", "axial_offset"});
-  const auto &t = column(l2, {"time"});
+  const auto &F1 = l1.at("film_force"), &F2 = l2.at("film_force");
+  const auto &Q1 = l1.at("leakage_inner"), &Q2 = l2.at("leakage_inner");
+  const auto &Z1 = l1.at("axial_offset"), &Z2 = l2.at("axial_offset");
+  const auto &t = l2.at("time");
   std::cout << "film force at t = 0: level 1 " << F1[0] << " N, level 2 " << F2[0]
             << " N (table's reported error " << force_error << " relative); leakage " << Q1[0]
             << " vs " << Q2[0] << " m^3/s (" << leakage_error << "); Z at " << t.back()
@@ -193,7 +182,7 @@ TEST(TransientFilmLevels, FiniteElementTransientSettlesOnTheEquilibrium)
   const auto tr = run_sealfe(tr_dir, "transient", seal + transient + settings.str());
   ASSERT_EQ(tr.status, 0) << tr.err;
   const auto csv = read_csv(read_file(tr_dir / "out" / "transient.csv"));
-  const double z_end = column(csv, {"Z", "axial_offset"}).back();
+  const double z_end = csv.at("axial_offset").back();
   std::cout << "level 2: Z(25 s) = " << z_end << " m, equilibrium " << z_eq << " m" << std::endl;
   EXPECT_NEAR(z_end / C0, z_eq / C0, 1e-6);
 }

@@ -26,6 +26,24 @@ struct SealEquilibrium
 SealEquilibrium solve_equilibrium(const FlexibleStatorSeal &seal, const FilmForceModel &film,
                                   const FilmState &state);
 
+/// The operating point with tilts: a steady state of the transient's equations (see
+/// StatorTransient::steady_state) for a seal whose ramps hold the conditions constant.
+struct SteadyWhirl
+{
+  TransientState state{};
+  unsigned int newton_iterations = 0;  ///< summed over the continuation steps
+  unsigned int continuation_steps = 0; ///< steady states solved on the way
+};
+
+/// Continuation in the forcing from `guess` (the axisymmetric balance): runout, dynamic and
+/// stator misalignment scaled by s from 0 to 1, each steady state the next one's Newton guess,
+/// the increment halved on a failure. This follows the branch that grows out of the linear
+/// response; a large whirl near a critical speed opens the faces and the branch can end in a
+/// fold, which is refused (std::runtime_error, one line with the fraction reached).
+/// NoSteadyState propagates.
+SteadyWhirl solve_steady_whirl(const FlexibleStatorSeal &seal, const FilmForceModel &film,
+                               const TransientSettings &settings, const TransientState &guess);
+
 /// The quasi-static coning at film state `state` (Eq. 11 with d/dt = 0): beta = f(h(beta)),
 /// solved by toms748 (beta on [0, f(h(0))]: h grows with beta, so the root is unique).
 double quasi_static_coning(const FlexibleStatorSeal &seal, FilmState state);

@@ -7,6 +7,7 @@
 #include <sealfe/dynamics/closing_force.h>
 #include <sealfe/dynamics/face_contact.h>
 #include <sealfe/dynamics/operating_ramps.h>
+#include <sealfe/dynamics/ring_properties.h>
 #include <sealfe/dynamics/thermal_coning.h>
 #include <sealfe/film/film_force_model.h>
 
@@ -14,6 +15,7 @@
 
 #include <array>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -59,12 +61,11 @@ struct RotorRunout
 struct RotorRing
 {
   bool flexible = false;
-  double transverse_inertia = 0.2; ///< I_tr (kg m^2), Varney & Green 2017 Table 2
-  double polar_inertia = 0.1;      ///< I_pr (kg m^2)
-  double angular_stiffness = 5e5;  ///< K_r (N m/rad)
-  double angular_damping = 20;     ///< D_r (N m s/rad)
-  double rotating_damping = 1;     ///< D_omega_r (N m s/rad)
-  double dynamic_misalignment = 0; ///< chi (rad)
+  /// I_tr, I_pr, K_r (support stiffness), D_r (support damping), D_omega_r (rotating damping)
+  /// and chi (dynamic misalignment) as in the linear model of `sealfe response`; Varney & Green
+  /// 2017 Table 2. Its support_misalignment is not used: the shaft holds the rotor at the
+  /// runout tilt (RotorRunout), which is chi_s.
+  RingProperties angular{0.2, 0.1, 5e5, 20, 1, 0, 0}; // I_tr, I_pr, K_r, D_r, D_wr, -, chi
   /// Axial (Eq. 7, with a flexible rotor only): K_zr > 0 makes the rotor's axial motion a state,
   /// m_r u_zr'' + D_zr u_zr' + K_zr u_zr = -(F_f + F_c); 0 keeps it axially rigid.
   double axial_stiffness = 0; ///< K_zr (N/m)
@@ -131,6 +132,14 @@ struct FlexibleStatorSeal
   double face_area() const;
 };
 
+/// Thrown by StatorTransient::steady_state when no steady state can exist for the forcing (runout
+/// and a stator misalignment together, or a frame in which the forcing is not steady), as
+/// opposed to a Newton iteration that failed.
+struct NoSteadyState : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
 /// The state of the transient (physical units): Z, Z', the relative tilt a = a_s - a_r and its
 /// rate, beta, the leaked volume V, the rotor tilt a_r and its rate (flexible rotor only, else 0),
 /// the rotor's axial displacement u_zr toward the stator and its rate (axially flexible rotor
@@ -191,11 +200,13 @@ public:
   /// initial misalignment does. Unknowns: Z, the relative tilt, beta (first-order lag), the
   /// flexible rotor's tilt; Newton with a central-difference Jacobian from `guess` (its rates
   /// are ignored). Throws std::runtime_error (one line) when both forcings are present (no
-  /// steady state exists) or Newton does not converge. `iterations` gets Newton's count.
+  /// steady state exists: NoSteadyState) or Newton does not converge. `iterations` gets
+  /// Newton's count.
   TransientState steady_state(double t, const TransientState &guess,
                               unsigned int *iterations = nullptr) const;
   /// The film's state at (t, y): tilts in the integration frame with their inertial rates, the
-  /// coning in use, the ramps' speeds and pressures.
+  /// coning in use, the ramps' speeds and pressures (no film evaluation). Throws
+  /// std::runtime_error for a non-finite state or faces opened beyond 1000 C0.
   FilmState film_state(double t, const TransientState &y) const;
   /// Contact force minus Contact threshold x F_cls at the state (N): > 0 in contact. Contact
   /// only (no film evaluation).
