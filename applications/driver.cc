@@ -5,7 +5,9 @@
 #include <sealfe/film/operating_conditions.h>
 #include <sealfe/io/output.h>
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
@@ -151,9 +153,21 @@ void publish_paths(nlohmann::json &node)
       publish_paths(value);
 }
 
+/// --timings: the stages a sub-command reports in summary.json (stage_wall_time, e.g. the film
+/// solver's setup, assembly, linear solve, loads, error estimate), one per line.
+void print_stage_times(const nlohmann::json &stages, const std::string &prefix = "")
+{
+  for (const auto &[name, value] : stages.items())
+    if (value.is_object())
+      print_stage_times(value, prefix + name + "/");
+    else if (value.is_number())
+      std::cout << "  " << std::left << std::setw(40) << prefix + name << std::right
+                << std::setw(12) << std::setprecision(4) << value.get<double>() << " s\n";
+}
+
 void print_usage(std::ostream &out, const std::vector<SubCommand> &commands)
 {
-  out << "usage: sealfe <sub-command> [file.prm]\n"
+  out << "usage: sealfe [--timings] <sub-command> [file.prm]\n"
          "       sealfe --print-parameters [sub-command]\n"
          "       sealfe --version\n\nsub-commands:\n";
   for (const auto &c : commands)
@@ -165,7 +179,15 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
 {
   const MPI_Comm comm = MPI_COMM_WORLD;
   const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> args(argv + 1, argv + argc);
+  // --timings may stand anywhere: deal.II's TimerOutput summary of the run's stages after the
+  // headline
+  const auto timings_flag = std::find(args.begin(), args.end(), "--timings");
+  const bool print_timings = timings_flag != args.end();
+  if (print_timings)
+    args.erase(timings_flag);
+  ConditionalOStream timer_stream(std::cout, root);
+  TimerOutput timer(timer_stream, TimerOutput::never, TimerOutput::wall_times);
   try
   {
     if (args.empty() || args[0] == "--help" || args[0] == "-h")
@@ -203,6 +225,7 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       throw std::runtime_error("too many arguments (usage: sealfe " + command.name +
                                " [file.prm])");
     const auto start = std::chrono::steady_clock::now();
+    timer.enter_subsection("read parameters");
     ParameterHandler prm;
     declare_common(prm, command);
     if (args.size() == 2)
@@ -228,6 +251,7 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       }
     }
     const std::string directory = prm.get("Output directory");
+    timer.leave_subsection();
 
     // The run writes into a staging directory inside the output directory, made before any work
     // (so an unwritable directory is refused at once) on rank 0; every rank of a distributed
@@ -261,6 +285,7 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       const CoutRedirect redirect(headline);
       try
       {
+        const TimerOutput::Scope scope(timer, "run " + command.name);
         if (command.distributed || root)
           summary = command.run(prm, staging, comm);
       }
@@ -272,6 +297,7 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
         summary["complete"] = false;
       }
     }
+    timer.enter_subsection("write summary");
     if (root)
     {
       summary["sub_command"] = command.name;
@@ -285,11 +311,24 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       output::write_used_parameters(staging, prm);
       output::write_summary(staging, summary);
       staged->publish();
+    }
+    timer.leave_subsection();
+    if (root)
+    {
       if (!incomplete.empty())
         throw std::runtime_error(incomplete);
       std::cout << output::published_name(headline.str());
       std::cout << "sealfe " << command.name << ": wrote " << directory << "/summary.json and "
                 << directory << "/used_parameters.prm\n";
+    }
+    if (print_timings)
+    {
+      timer.print_summary();
+      if (root && summary.contains("stage_wall_time"))
+      {
+        std::cout << "stages of run " << command.name << " (summary.json stage_wall_time):\n";
+        print_stage_times(summary["stage_wall_time"]);
+      }
     }
     return 0;
   }

@@ -8,8 +8,29 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cstdlib>
+
+namespace
+{
+/// A run without a launcher (no mpirun/srun environment) is one rank talking to nobody. Open MPI
+/// would still start its UCX transport and probe the node for peers, which costs ~0.25 s of a
+/// ~0.5 s small run (doc/performance.md). Ask for the shared-memory-free, isolated singleton
+/// instead; a setting the user made in the environment wins (setenv does not overwrite).
+void choose_single_rank_transport()
+{
+  for (const char *launcher_variable :
+       {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "SLURM_PROCID"})
+    if (std::getenv(launcher_variable) != nullptr)
+      return;
+  setenv("OMPI_MCA_pml", "ob1", 0);
+  setenv("OMPI_MCA_btl", "self", 0);
+  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+}
+} // namespace
+
 int main(int argc, char **argv)
 {
+  choose_single_rank_transport();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace sealfe::applications;
   return run_command_line(argc, argv,

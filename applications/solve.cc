@@ -41,13 +41,21 @@ void declare_parameters(ParameterHandler &prm)
   NarrowSealQuadrature::declare_parameters(prm);
 }
 
-void print_loads(const FilmLoads &loads)
+/// The loads of `summary`, each with its discretisation error estimate beside it, and shown as 0
+/// when below its round-off bound (film_summary.h, load_with_uncertainty).
+void print_loads(const nlohmann::json &summary)
 {
-  std::cout << "  force_z              " << loads.force_z << " N\n"
-            << "  moment_x, moment_y   " << loads.moment_x << ", " << loads.moment_y << " N m\n"
-            << "  leakage inner circle " << loads.leakage_inner << " m^3/s (out through r = ri)\n"
-            << "  leakage outer circle " << loads.leakage_outer << " m^3/s (out through r = ro)\n"
-            << "  friction torque      " << loads.friction_torque << " N m\n";
+  std::cout << "  force_z              " << load_with_uncertainty(summary, "force_z", "N") << "\n"
+            << "  moment_x             " << load_with_uncertainty(summary, "moment_x", "N m")
+            << "\n"
+            << "  moment_y             " << load_with_uncertainty(summary, "moment_y", "N m")
+            << "\n"
+            << "  leakage inner circle " << load_with_uncertainty(summary, "leakage_inner", "m^3/s")
+            << "\n"
+            << "  leakage outer circle " << load_with_uncertainty(summary, "leakage_outer", "m^3/s")
+            << "\n                       (leakage: positive out of the film through that circle)\n"
+            << "  friction torque      " << load_with_uncertainty(summary, "friction_torque", "N m")
+            << "\n";
 }
 
 /// Level 0: the closed-form loads of the narrow seal.
@@ -70,7 +78,7 @@ nlohmann::json solve_closed_form(ParameterHandler &prm, const FilmSettings &sett
   if (root)
   {
     std::cout << std::setprecision(6) << "sealfe solve (narrow seal)\n";
-    print_loads(loads);
+    print_loads(summary);
   }
   return summary;
 }
@@ -107,7 +115,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   {
     std::cout << std::setprecision(6) << "sealfe solve (finite element, " << solver.n_dofs()
               << " dofs, degree " << solver.degree() << ")\n";
-    print_loads(loads);
+    print_loads(summary);
     std::cout << "  min film             " << loads.min_film << " m\n";
     if (write_fields)
       std::cout << "  fields               " << directory << "/solution.pvd\n";

@@ -216,6 +216,42 @@ double mass_balance_flow_scale(const FilmThickness &film, const OperatingConditi
                    std::abs(loads.leakage_outer), std::numeric_limits<double>::min()});
 }
 
+namespace
+{
+/// The number at `path` in `j`, 0 if there is none (an estimate that was not made).
+double number_at(const nlohmann::json &j, std::initializer_list<std::string> path)
+{
+  const nlohmann::json *node = &j;
+  for (const std::string &key : path)
+  {
+    if (!node->is_object() || !node->contains(key))
+      return 0.0;
+    node = &node->at(key);
+  }
+  return node->is_number() ? node->get<double>() : 0.0;
+}
+} // namespace
+
+std::string load_with_uncertainty(const nlohmann::json &summary, const std::string &name,
+                                  const std::string &unit)
+{
+  const double value = summary.at(name).get<double>();
+  const double round_off = number_at(summary, {"round_off", "absolute_bound", name});
+  const double discretisation = number_at(summary, {"error_estimate", name});
+  std::ostringstream s;
+  s << std::setprecision(6);
+  if (std::abs(value) <= round_off)
+  {
+    s << "0 " << unit << std::setprecision(2) << " (round-off: computed " << value
+      << ", below its bound " << round_off << ")";
+    return s.str();
+  }
+  s << value << " " << unit;
+  if (discretisation > 0)
+    s << std::setprecision(2) << " (+- " << discretisation << " discretisation)";
+  return s.str();
+}
+
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
                                             const ReynoldsSolver &solver, const FilmLoads &loads,
                                             MPI_Comm comm)
@@ -241,8 +277,11 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   const double scale = mass_balance_flow_scale(settings.geometry, settings.conditions, loads);
   summary["mass_balance_residual"] = imbalance == 0 ? 0.0 : imbalance / scale;
   summary["mass_balance_flow_scale"] = scale;
-  const nlohmann::json round_off =
-      estimate_round_off(settings.geometry, settings.conditions, loads).to_json();
+  const RoundOffEstimate round_off_estimate =
+      estimate_round_off(settings.geometry, settings.conditions, loads);
+  nlohmann::json round_off = round_off_estimate.to_json();
+  round_off["absolute_bound"] =
+      round_off_bounds_of_loads(round_off_estimate, settings.geometry, scale);
   summary["round_off"] = round_off;
   if (round_off.contains("warning") && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
     std::cerr << "sealfe: warning: " << round_off["warning"].get<std::string>() << std::endl;

@@ -54,6 +54,21 @@ nlohmann::json RoundOffEstimate::to_json() const
   return j;
 }
 
+nlohmann::json round_off_bounds_of_loads(const RoundOffEstimate &estimate,
+                                         const FilmThickness &film, const double flow_scale)
+{
+  const double ri = film.inner_radius, ro = film.outer_radius;
+  const double force_scale = estimate.pressure_range * M_PI * (ro * ro - ri * ri);
+  const double force = estimate.absolute_bound(force_scale);
+  const double moment = estimate.absolute_bound(force_scale * ro);
+  const double leakage = estimate.absolute_bound(flow_scale);
+  return {{"force_z", force},
+          {"moment_x", moment},
+          {"moment_y", moment},
+          {"leakage_inner", leakage},
+          {"leakage_outer", leakage}};
+}
+
 void refuse_round_off_collapse(const RoundOffEstimate &e)
 {
   // Without a supply pressure the pressure range is the film's own (possibly all round-off, as

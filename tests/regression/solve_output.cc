@@ -148,3 +148,48 @@ TEST(SolveOutput, EachSubCommandHasItsOwnDefaultDirectory)
   EXPECT_TRUE(fs::exists(dir / "sealfe-output" / "equilibrium" / "summary.json"));
   EXPECT_FALSE(fs::exists(dir / "sealfe-output" / "summary.json"));
 }
+
+// Round-off shown as round-off. On an axisymmetric seal the moments are exactly zero by symmetry;
+// what the solver computes is round-off, and it must lie below the round-off bound summary.json
+// gives (eps * viscous pressure scale / pressure range, times the moment scale p_range * area *
+// ro; doc/guarantees.md) and be printed as 0. A tilted seal's moment is a physical result
+// (Green 2002: a restoring moment of the order of the tilt stiffness times the tilt) and is
+// printed as a number with its discretisation estimate. --timings adds deal.II's TimerOutput table.
+TEST(SolveOutput, RoundOffMomentsPrintedAsZeroAndTimings)
+{
+  const fs::path dir = fs::temp_directory_path() / "sealfe_regression_round_off";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  auto run = [&dir](const std::string &name, const std::string &body, const std::string &flags)
+  {
+    std::ofstream(dir / (name + ".prm"))
+        << "set Output directory = " << (dir / name).string() << "\n"
+        << body << "subsection Output\n  set Write fields = false\nend\n";
+    const std::string cmd = std::string(SEALFE_BINARY) + " " + flags + " solve " +
+                            (dir / (name + ".prm")).string() + " > " +
+                            (dir / (name + ".log")).string() + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << name;
+    std::ifstream log(dir / (name + ".log"));
+    return std::string(std::istreambuf_iterator<char>(log), {});
+  };
+  const std::string axisymmetric = run("axisymmetric", "", "--timings");
+  const auto s = nlohmann::json::parse(std::ifstream(dir / "axisymmetric" / "summary.json"));
+  for (const char *m : {"moment_x", "moment_y"})
+  {
+    const double bound = s["round_off"]["absolute_bound"][m];
+    EXPECT_LE(std::abs(s[m].get<double>()), bound) << m;
+    // the bound is far below any moment a seal carries (1e-6 N m: 1e-9 of the tilt stiffness
+    // times a 1 urad tilt of this seal is ~1e-3 N m)
+    EXPECT_LT(bound, 1e-6) << m;
+    EXPECT_NE(axisymmetric.find(std::string(m) + "             0 N m (round-off"),
+              std::string::npos)
+        << axisymmetric;
+  }
+  EXPECT_NE(axisymmetric.find("| run solve "), std::string::npos) << axisymmetric;
+
+  const std::string tilted = run("tilted", "subsection Geometry\n  set Tilt = 1e-5\nend\n", "");
+  EXPECT_EQ(tilted.find("round-off"), std::string::npos) << tilted;
+  EXPECT_NE(tilted.find("discretisation"), std::string::npos) << tilted;
+  EXPECT_EQ(tilted.find("TimerOutput"), std::string::npos);
+  EXPECT_EQ(tilted.find("| run solve "), std::string::npos) << tilted;
+}

@@ -49,6 +49,13 @@ double mass_balance_flow_scale(const FilmThickness &film, const OperatingConditi
 /// nodes (FilmLoads::pressure_undershoot) by more than 1 % of the peak pressure above p_cav.
 std::string pressure_undershoot_warning(const FilmLoads &loads, double cavitation_pressure);
 
+/// The headline of load `name` (a key of summary.json, unit `unit`) as a user should read it:
+/// "0 N m (round-off: computed -4.3e-14, below its bound 1.8e-11)" when its magnitude is below
+/// the round-off bound (round_off/absolute_bound), else the value with its discretisation error
+/// estimate beside it (error_estimate/<name>) when there is one.
+std::string load_with_uncertainty(const nlohmann::json &summary, const std::string &name,
+                                  const std::string &unit);
+
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
                                             const ReynoldsSolver &solver, const FilmLoads &loads,
                                             MPI_Comm comm);

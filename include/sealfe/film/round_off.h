@@ -35,7 +35,18 @@ struct RoundOffEstimate
   static constexpr double refuse_above = 1e-1;
 
   nlohmann::json to_json() const;
+
+  /// Absolute round-off of a load whose scale (the load the pressure range would carry) is
+  /// `scale`: relative_error * scale. A computed load below it (a moment of 1e-14 N m on an
+  /// axisymmetric seal) is round-off, not a result.
+  double absolute_bound(double scale) const { return relative_error * scale; }
 };
+
+/// The absolute round-off bounds of the loads (summary.json round_off/absolute_bound): force
+/// pressure_range * pi (ro^2 - ri^2) (N), moments that times ro (N m), leakages relative_error
+/// times the mass-balance flow scale `flow_scale` (m^3/s).
+nlohmann::json round_off_bounds_of_loads(const RoundOffEstimate &estimate,
+                                         const FilmThickness &film, double flow_scale);
 
 RoundOffEstimate estimate_round_off(const FilmThickness &film,
                                     const OperatingConditions &conditions, const FilmLoads &loads);
