@@ -5,7 +5,10 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 
 namespace sealfe
 {
@@ -13,23 +16,50 @@ using namespace dealii;
 
 namespace
 {
-/// Film thickness and volume flux q = -h^3/(12 mu) grad p + h u_mean at the output points.
+/// Film thickness and the volume flux the film equation conserves, q = -K grad p + (1 - v) c
+/// (K = phi_p h^3/(12 mu), c the Couette flux h u_mean with its shear flow factor, v the JFO
+/// void fraction: 0 outside a cavity and for every other cavitation model), at the output points.
 class FilmPostprocessor : public DataPostprocessor<2>
 {
 public:
-  explicit FilmPostprocessor(std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film)
-      : film(std::move(film))
+  /// `void_fraction`: the nodal JFO void fraction, or nullptr (v = 0).
+  FilmPostprocessor(std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film,
+                    const FiniteElement<2> &fe, const unsigned int n_subdivisions,
+                    const TrilinosWrappers::MPI::Vector *void_fraction)
+      : film(std::move(film)), void_fraction(void_fraction)
   {
+    // DataOut evaluates on each cell the lattice (i/n, j/n), i fastest: the values of the shape
+    // functions there interpolate the nodal void fraction to the output points
+    for (unsigned int j = 0; j <= n_subdivisions; ++j)
+      for (unsigned int i = 0; i <= n_subdivisions; ++i)
+      {
+        const Point<2> unit(double(i) / n_subdivisions, double(j) / n_subdivisions);
+        std::vector<double> values(fe.n_dofs_per_cell());
+        for (unsigned int k = 0; k < values.size(); ++k)
+          values[k] = fe.shape_value(k, unit);
+        shape_values.push_back(std::move(values));
+      }
   }
   void evaluate_scalar_field(const DataPostprocessorInputs::Scalar<2> &in,
                              std::vector<Vector<double>> &out) const override
   {
+    std::vector<double> liquid(in.evaluation_points.size(), 1.0);
+    if (void_fraction != nullptr)
+    {
+      AssertDimension(in.evaluation_points.size(), shape_values.size());
+      const auto cell = in.template get_cell<2>();
+      Vector<double> nodal_void(shape_values[0].size());
+      cell->get_dof_values(*void_fraction, nodal_void);
+      for (unsigned int q = 0; q < liquid.size(); ++q)
+        for (unsigned int k = 0; k < nodal_void.size(); ++k)
+          liquid[q] -= nodal_void[k] * shape_values[q][k];
+    }
     for (unsigned int q = 0; q < in.evaluation_points.size(); ++q)
     {
-      // q = -K grad p + c: the full-film flux (in a JFO cavity the Couette part carries the
-      // liquid fraction: multiply c by liquid_fraction there; the pressure part is zero).
+      // in a JFO cavity the pressure part vanishes (p = p_cav) and the Couette part carries the
+      // liquid fraction: the flux stream tracers follow is the flux that is conserved
       const ReynoldsSolver::LocalFilm f = film(in.evaluation_points[q]);
-      const Tensor<1, 2> flux = -(f.K * in.solution_gradients[q]) + f.c;
+      const Tensor<1, 2> flux = -(f.K * in.solution_gradients[q]) + liquid[q] * f.c;
       out[q](0) = f.h;
       out[q](1) = flux[0];
       out[q](2) = flux[1];
@@ -66,13 +96,78 @@ public:
 
 private:
   std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film;
+  const TrilinosWrappers::MPI::Vector *void_fraction;
+  std::vector<std::vector<double>> shape_values; ///< [output point][cell dof]
 };
+} // namespace
+
+namespace
+{
+/// Adds the MPI rank that owns each cell as the Int32 cell array `rank` to the pieces of `vtu`
+/// and declares it in its record `pvtu`.
+void add_rank_cell_data(const std::string &vtu, const std::string &pvtu)
+{
+  auto read = [](const std::string &name)
+  {
+    std::ifstream in(name, std::ios::binary);
+    if (!in)
+      throw std::runtime_error("cannot read back the field file " + name);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  // replace the file only once the new content is complete (never half-written)
+  auto replace = [](const std::string &name, const std::string &content)
+  {
+    const std::string temporary = name + ".part";
+    {
+      std::ofstream out(temporary, std::ios::binary);
+      out << content;
+      if (!out.flush())
+        throw std::runtime_error("cannot write the field file " + temporary);
+    }
+    std::filesystem::rename(temporary, name);
+  };
+
+  std::string text = read(vtu);
+  // One <Piece> per rank, in rank order (deal.II writes them with ordered collective writes).
+  std::size_t at = 0;
+  for (unsigned int rank = 0;; ++rank)
+  {
+    const std::size_t piece = text.find("<Piece ", at);
+    if (piece == std::string::npos)
+      break;
+    const std::size_t count = text.find("NumberOfCells=\"", piece);
+    const std::size_t end = text.find("</Piece>", piece);
+    if (count == std::string::npos || end == std::string::npos || count > end)
+      throw std::runtime_error("unexpected layout of the field file " + vtu);
+    const unsigned long n_cells = std::stoul(text.substr(count + 15));
+    std::string cell_data =
+        "<CellData>\n<DataArray type=\"Int32\" Name=\"rank\" format=\"ascii\">\n";
+    cell_data.reserve(cell_data.size() + 2 * n_cells * (std::to_string(rank).size() + 1) + 40);
+    const std::string value = std::to_string(rank) + " ";
+    for (unsigned long c = 0; c < n_cells; ++c)
+      cell_data += value;
+    cell_data += "\n</DataArray>\n</CellData>\n";
+    text.insert(end, cell_data);
+    at = end + cell_data.size() + 8;
+  }
+  replace(vtu, text);
+
+  std::string record = read(pvtu);
+  const std::size_t points = record.find("<PPoints>");
+  if (points == std::string::npos)
+    throw std::runtime_error("unexpected layout of the field record " + pvtu);
+  record.insert(points, "<PCellData>\n      <PDataArray type=\"Int32\" Name=\"rank\" "
+                        "format=\"ascii\"/>\n    </PCellData>\n    ");
+  replace(pvtu, record);
+}
 } // namespace
 
 std::string write_film_fields(const ReynoldsSolver &s, const std::string &directory,
                               const std::string &basename, const unsigned int counter)
 {
-  FilmPostprocessor postprocessor([&s](const Point<2> &x) { return s.local_film(x); });
+  FilmPostprocessor postprocessor(
+      [&s](const Point<2> &x) { return s.local_film(x); }, *s.fe, s.polynomial_degree,
+      s.cavitation.model == Cavitation::jfo ? &s.locally_relevant_void : nullptr);
   DataOut<2> data_out;
   data_out.attach_dof_handler(s.dof_handler);
   data_out.add_data_vector(s.locally_relevant_solution, "pressure");
@@ -99,9 +194,6 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   cavitated_ghosted = cavitated;
   data_out.add_data_vector(liquid_ghosted, "liquid_fraction");
   data_out.add_data_vector(cavitated_ghosted, "cavitated");
-  Vector<float> subdomain(s.triangulation.n_active_cells());
-  subdomain = s.triangulation.locally_owned_subdomain();
-  data_out.add_data_vector(subdomain, "rank");
   // one Lagrange cell of the element's degree per cell (VTK_LAGRANGE_QUADRILATERAL): ParaView
   // shows the curved element and its degree instead of k^2 straight sub-quads; zlib at its
   // fastest level (the write is a large share of a big solve's time)
@@ -110,8 +202,17 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   flags.compression_level = DataOutBase::VtkFlags::best_speed;
   data_out.set_flags(flags);
   data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
-  return data_out.write_vtu_with_pvtu_record(directory + "/", basename, counter, s.mpi_communicator,
-                                             4, 1);
+  const std::string pvtu = data_out.write_vtu_with_pvtu_record(directory + "/", basename, counter,
+                                                               s.mpi_communicator, 4, 1);
+  // `rank` as true cell data (deal.II 9.4 writes cell vectors as point data): added to the
+  // pieces once every rank has written its own
+  MPI_Barrier(s.mpi_communicator);
+  if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
+    add_rank_cell_data(directory + "/" + basename + "_" + Utilities::int_to_string(counter, 4) +
+                           ".0.vtu",
+                       directory + "/" + pvtu);
+  MPI_Barrier(s.mpi_communicator);
+  return pvtu;
 }
 
 std::string write_film_output(const ReynoldsSolver &s, const std::string &directory)

@@ -1,5 +1,6 @@
-// Field output of a film solve: pressure, film thickness, volume flux, flow factors, contact
-// pressure, liquid fraction and cavitated region as VTU (per rank group) + PVTU + PVD.
+// Field output of a film solve: pressure, film thickness, the conserved volume flux, flow
+// factors, contact pressure, liquid fraction and cavitated region as point data of Lagrange
+// cells of the element's degree, and the owning MPI rank as cell data; VTU + PVTU + PVD.
 #pragma once
 
 #include <string>
