@@ -438,7 +438,10 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
     if (plot.made)
       files.push_back("transient.png");
     else
+    {
       s["plot_note"] = plot.note;
+      report_skipped_plot("sealfe transient", plot);
+    }
   }
   s["files"] = files;
   s["csv_notes"] = {
