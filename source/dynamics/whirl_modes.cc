@@ -13,8 +13,9 @@ namespace
 using cplx = std::complex<double>;
 
 /// An eigenvector of the real matrix A for its eigenvalue lambda: inverse iteration with the
-/// shift sigma = lambda (1 + 1e-9) (A - sigma I is then invertible but nearly singular, so two
-/// solves turn any start vector into the eigenvector to round-off).
+/// shift sigma = lambda + 1e-9 max(|lambda|, 1) (A - sigma I is then invertible but nearly
+/// singular, so two solves turn any start vector into the eigenvector to round-off, unless
+/// another eigenvalue lies as close).
 std::vector<cplx> eigenvector(const dealii::FullMatrix<double> &A, const cplx lambda)
 {
   const unsigned int m = A.m();

@@ -5,6 +5,7 @@
 #include "../sealfe_cli.h"
 
 #include <sealfe/closed_form/green_etsion.h>
+#include <sealfe/dynamics/whirl_modes.h>
 
 #include <gtest/gtest.h>
 
@@ -192,4 +193,48 @@ TEST(StabilityMap, ThresholdCurveFollowsTheFmsClosedForm)
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_DOUBLE_EQ(summary["stable_range"][0].get<double>(), sweep["stable_low"][1]);
   EXPECT_DOUBLE_EQ(summary["stable_range"][1].get<double>(), sweep["stable_high"][1]);
+}
+
+// The whirl direction from the eigenvector, against the gyroscopic splitting of one spinning ring
+// (FMR) on a film of stiffness only: z = t_x + i t_y obeys I_t z'' - i I_p omega z' + k z = 0, so
+// the modes whirl at psi = (I_p omega +- sqrt(I_p^2 omega^2 + 4 I_t k)) / (2 I_t), undamped: the
+// + root forward (> 0), the - root backward (< 0), the one whirling with the spin stiffened.
+TEST(WhirlModes, GyroscopicSplittingOfOneSpinningRing)
+{
+  sealfe::RingProperties rotor;
+  rotor.transverse_inertia = 1e-3;
+  rotor.polar_inertia = 1.5e-3;
+  rotor.support_stiffness = 500;
+  const double k_film = 1e4, k = k_film + rotor.support_stiffness;
+  const sealfe::AngularSealDynamics d(sealfe::SealConfiguration::fmr, rotor,
+                                      sealfe::RingProperties(),
+                                      [k_film](double wr, double ws)
+                                      {
+                                        sealfe::FilmCoefficients f;
+                                        f.stiffness[1][1] = f.stiffness[2][2] = k_film;
+                                        f.rotor_speed = wr;
+                                        f.stator_speed = ws;
+                                        return f;
+                                      });
+  for (const double omega : {-3000.0, 0.0, 500.0, 4000.0})
+  {
+    const double a = rotor.polar_inertia * omega, I = rotor.transverse_inertia;
+    const double forward = (a + std::sqrt(a * a + 4 * I * k)) / (2 * I),
+                 backward = (a - std::sqrt(a * a + 4 * I * k)) / (2 * I);
+    const auto modes = sealfe::whirl_modes(d, omega, 0.0);
+    ASSERT_EQ(modes.size(), 2u) << "omega = " << omega;
+    double found_forward = 0, found_backward = 0;
+    for (const auto &m : modes)
+    {
+      EXPECT_NEAR(m.damping_ratio, 0, 1e-12) << "omega = " << omega;
+      EXPECT_EQ(m.stator_share, 0) << "omega = " << omega; // the rotor ring only
+      if (omega == 0) // no spin: both directions at one frequency, the eigenvector any mix
+        EXPECT_NEAR(std::abs(m.whirl_frequency), forward, 1e-9 * forward);
+      (m.whirl_frequency > 0 ? found_forward : found_backward) = m.whirl_frequency;
+    }
+    if (omega == 0)
+      continue;
+    EXPECT_NEAR(found_forward, forward, 1e-9 * forward) << "omega = " << omega;
+    EXPECT_NEAR(found_backward, backward, 1e-9 * std::abs(backward)) << "omega = " << omega;
+  }
 }
