@@ -81,6 +81,13 @@ void print_headline(const nlohmann::json &s)
   if (s.contains("second_parameter"))
     std::cout << "  stable range against   " << s["second_parameter"].get<std::string>() << ": "
               << s["second_parameter_sweep"].size() << " values in stability_sweep.csv\n";
+  if (s.contains("plots") && !s["plots"].empty())
+  {
+    std::cout << "  plots                  ";
+    for (std::size_t i = 0; i < s["plots"].size(); ++i)
+      std::cout << (i ? ", " : "") << s["plots"][i].get<std::string>();
+    std::cout << "\n";
+  }
 }
 
 nlohmann::json run(dealii::ParameterHandler &prm, const std::string &directory, MPI_Comm)

@@ -713,8 +713,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     if (plot.made)
       plot_file = png.filename().string();
     else
-      std::cerr << "sealfe annular: " << plot.note << "; to make it run\n  " << plot.command
-                << std::endl;
+      report_skipped_plot("sealfe annular", plot);
   }
 
   const bool stepped = seal.geometry == Geometry::stepped;

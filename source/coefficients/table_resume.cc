@@ -72,7 +72,7 @@ nlohmann::json recorded_parameters(const dealii::ParameterHandler &prm)
       const std::string name = path + demangle(key);
       if (value.contains("value"))
       {
-        if (name != "Output directory" && name != "Table/Resume")
+        if (name != "Output directory" && name != "Table/Resume" && name != "Table/Plot")
           recorded[name] = value["value"].get<std::string>();
       }
       else

@@ -4,6 +4,7 @@
 #include <sealfe/io/csv.h>
 #include <sealfe/io/interrupt.h>
 #include <sealfe/io/output.h>
+#include <sealfe/io/python_plot.h>
 #include <sealfe/numerics/number_lists.h>
 
 #include <deal.II/base/utilities.h>
@@ -215,6 +216,11 @@ void declare_parameters(ParameterHandler &prm)
                     "the other points. Refused, naming the entry, if any parameter differs from "
                     "the previous run's (summary.json: parameters). Without a previous run, every "
                     "point is computed.");
+  prm.declare_entry("Plot", "true", Patterns::Bool(),
+                    "When the table sweeps Rotor speed: draw the stiffness, damping, force and "
+                    "leakage against it beside the CSV (<Output file stem>.png, "
+                    "scripts/plot_table.py), if python3 with matplotlib is found (else one line "
+                    "on stderr).");
   prm.leave_subsection();
 }
 
@@ -237,6 +243,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   const std::string file = prm.get("Output file");
   const unsigned int n_check = prm.get_integer("Held-out points");
   const bool resume = prm.get_bool("Resume");
+  const bool want_plot = prm.get_bool("Plot");
   const auto interpolation = prm.get("Interpolation") == "linear"
                                  ? CoefficientTable::Interpolation::linear
                                  : CoefficientTable::Interpolation::cubic;
@@ -473,6 +480,25 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
             {"damping", held.empty() ? none : nlohmann::json(worst_d)},
             {"definition", "max_ij |K~ - K| / max_ij |K| of diag(1, 1/ro, 1/ro) K diag(1, 1/ro, "
                            "1/ro); the same for D"}};
+      }
+      // coefficients against speed: only a table that sweeps the rotor speed has a curve to draw
+      const auto speed_axis =
+          std::find_if(plan.axes.begin(), plan.axes.end(),
+                       [](const SweepPlan::Axis &a) { return a.name == "rotor_speed"; });
+      summary["plot"] = nullptr;
+      if (want_plot && speed_axis != plan.axes.end() && speed_axis->values.size() > 1)
+      {
+        const std::string png = file.substr(0, file.rfind('.')) + ".png";
+        const PlotResult plot =
+            run_plot_script("plot_table.py", {directory + "/" + file, directory + "/" + png},
+                            directory + "/" + png);
+        if (plot.made)
+          summary["plot"] = png;
+        else
+        {
+          summary["plot_note"] = plot.note;
+          report_skipped_plot("sealfe table", plot);
+        }
       }
       std::cerr << "sealfe table: wrote " << output::published_name(directory + "/" + file) << " ("
                 << lines.size() << " of " << n_points << " rows, " << failures.size() << " failed, "

@@ -179,7 +179,7 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     else
     {
       summary["plot_note"] = plot.note;
-      std::cerr << "sealfe response: " << plot.note << std::endl;
+      report_skipped_plot("sealfe response", plot);
     }
   }
   summary["files"] = files;

@@ -298,6 +298,39 @@ void SealDynamicsInput::set(const std::string &name, const double value,
                              parameter_names() + ")");
 }
 
+double SealDynamicsInput::get(const std::string &name) const
+{
+  auto ring = [&](const RingProperties &r, const std::string &what)
+  {
+    if (what == "transverse inertia")
+      return r.transverse_inertia;
+    if (what == "polar inertia")
+      return r.polar_inertia;
+    if (what == "support stiffness")
+      return r.support_stiffness;
+    if (what == "support damping")
+      return r.support_damping;
+    if (what == "rotating damping")
+      return r.rotating_damping;
+    throw std::runtime_error("Seal dynamics: unknown parameter '" + name + "' (one of " +
+                             parameter_names() + ")");
+  };
+  const auto &film_names = FilmSettings::settable_names();
+  if (std::find(film_names.begin(), film_names.end(), name) != film_names.end())
+  {
+    FilmSettings film = film_solver;
+    film.geometry = geometry;
+    film.conditions = operating;
+    return film.get(name);
+  }
+  if (name.rfind("Rotor ring ", 0) == 0)
+    return ring(rotor, name.substr(11));
+  if (name.rfind("Stator ring ", 0) == 0)
+    return ring(stator, name.substr(12));
+  throw std::runtime_error("Seal dynamics: unknown parameter '" + name + "' (one of " +
+                           parameter_names() + ")");
+}
+
 void declare_speed_sweep(dealii::ParameterHandler &prm, const std::string &from,
                          const std::string &to, const std::string &points,
                          const std::string &points_documentation)

@@ -1,6 +1,8 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
 #include <sealfe/dynamics/stability_study.h>
+#include <sealfe/dynamics/whirl_modes.h>
 #include <sealfe/io/csv.h>
+#include <sealfe/io/python_plot.h>
 #include <sealfe/numerics/number_lists.h>
 
 #include <cctype>
@@ -44,6 +46,15 @@ void declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry("Hold normalized coning", "true", Bool(),
                     "When the second parameter is Clearance, scale Coning with it so that "
                     "beta* ro / C0 stays fixed (as Wileman & Green's Table 1 did).");
+  prm.declare_entry("Plot", "true", Bool(),
+                    "Draw stability_campbell.png (whirl frequency and damping ratio of each mode "
+                    "against the swept speed) and, with a Second parameter, stability_map.png "
+                    "(stable and unstable regions of swept speed against the second parameter) "
+                    "with scripts/plot_campbell.py and scripts/plot_stability_map.py, if python3 "
+                    "with matplotlib is found (else one line on stderr).");
+  prm.declare_entry("Python", "", Anything(),
+                    "Python interpreter for the plots; empty: the first of /usr/bin/python3 and "
+                    "python3 that imports matplotlib.");
   prm.leave_subsection();
 }
 
@@ -135,6 +146,8 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
   const std::string second = prm.get("Second parameter");
   const std::string second_values = prm.get("Second parameter values");
   const bool hold_beta = prm.get_bool("Hold normalized coning");
+  const bool want_plot = prm.get_bool("Plot");
+  const std::string python = prm.get("Python");
   prm.leave_subsection();
 
   if (!std::isfinite(sweep.from) || !std::isfinite(sweep.to) || !(sweep.to > sweep.from))
@@ -250,6 +263,38 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
     files.push_back(name);
   }
 
+  // Campbell diagram: every mode at every swept speed
+  {
+    const std::string name = "stability_campbell.csv";
+    csv::Writer table({{"swept_speed", "rad/s"},
+                       {"rotor_speed", "rad/s"},
+                       {"stator_speed", "rad/s"},
+                       {"mode", csv::dimensionless},
+                       {"eigenvalue_real", "1/s"},
+                       {"eigenvalue_imag", "1/s"},
+                       {"whirl_frequency", "rad/s"},
+                       {"damping_ratio", csv::dimensionless},
+                       {"stator_share", csv::dimensionless}});
+    for (unsigned int i = 0; i < sweep.n; ++i)
+    {
+      const double w = sweep.from + (sweep.to - sweep.from) * i / (sweep.n - 1);
+      const double r = swept_rotor ? w : fixed, s = swept_rotor ? fixed : w;
+      const auto modes = whirl_modes(dynamics, r, s);
+      for (unsigned int m = 0; m < modes.size(); ++m)
+        table.add_row({w, r, s, m, modes[m].eigenvalue.real(), modes[m].eigenvalue.imag(),
+                       modes[m].whirl_frequency, modes[m].damping_ratio, modes[m].stator_share});
+    }
+    table.write(output_directory, name);
+    notes[name] = "one row per mode and swept speed (Campbell diagram): mode numbers the modes "
+                  "at one speed by decreasing eigenvalue_real (0 = least damped), not a mode "
+                  "followed across speeds; lambda = eigenvalue_real + i eigenvalue_imag is the "
+                  "eigenvalue with Im >= 0 of a conjugate pair; whirl_frequency = +Im(lambda) for "
+                  "forward whirl (counter-clockwise, the sense of a positive speed), -Im(lambda) "
+                  "backward, 0 for a real eigenvalue; damping_ratio = -Re(lambda)/|lambda| "
+                  "(< 0: unstable); stator_share = the stator ring's share of the mode's tilt";
+    files.push_back(name);
+  }
+
   if (second != "none")
   {
     const std::string name = "stability_sweep.csv";
@@ -259,6 +304,13 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
                            {"low_at_search_limit", csv::dimensionless},
                            {"high_at_search_limit", csv::dimensionless},
                            {"stable_interval_count", csv::dimensionless}});
+    // the map: the verdict on the whole grid (second parameter x swept speed), every stable
+    // region, not only the interval stable_low..stable_high
+    const std::string map_name = "stability_map.csv";
+    csv::Writer map_table({{parameter_column(second), parameter_unit(second)},
+                           {"swept_speed", "rad/s"},
+                           {"growth_rate", "1/s"},
+                           {"stable", csv::dimensionless}});
     notes[name] = "stable range [stable_low, stable_high] of the " +
                   std::string(swept_rotor ? "rotor" : "stator") + " speed against " + second +
                   ": the stable interval containing the operating speed, else the widest; empty "
@@ -291,11 +343,60 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &output_dire
       csv_table.add_row({v, bound(0), bound(1), ok && lim[0].get<bool>(), ok && lim[1].get<bool>(),
                          static_cast<unsigned int>(iv.size())});
       table.push_back({{"value", v}, {"stable_range", range}});
+      for (unsigned int i = 0; i < sweep.n; ++i)
+      {
+        const double w = sweep.from + (sweep.to - sweep.from) * i / (sweep.n - 1);
+        const double r = swept_rotor ? w : f, s = swept_rotor ? f : w;
+        map_table.add_row({v, w, d.growth_rate(r, s), d.is_stable(r, s)});
+      }
     }
     csv_table.write(output_directory, name);
+    map_table.write(output_directory, map_name);
+    notes[map_name] = "growth rate and verdict on the grid of " + second +
+                      " (one block per "
+                      "Second parameter value) times the swept " +
+                      std::string(swept_rotor ? "rotor" : "stator") +
+                      " speed: the stability map; stable = 1: every mode decays";
     summary["second_parameter"] = second;
     summary["second_parameter_sweep"] = table;
     files.push_back(name);
+    files.push_back(map_name);
+  }
+
+  summary["plots"] = nlohmann::json::array();
+  if (want_plot)
+  {
+    struct Plot
+    {
+      std::string script, png;
+      std::vector<std::string> arguments;
+    };
+    const std::string dir = output_directory + "/";
+    std::vector<Plot> plots = {{"plot_campbell.py",
+                                "stability_campbell.png",
+                                {dir + "stability_campbell.csv", dir + "stability_growth_rate.csv",
+                                 dir + "stability_campbell.png"}}};
+    if (second != "none")
+      // the operating point on the map: the parameter's prm value and the swept ring's speed
+      plots.push_back({"plot_stability_map.py",
+                       "stability_map.png",
+                       {dir + "stability_map.csv", dir + "stability_sweep.csv",
+                        dir + "stability_map.png", numerics::to_prm_string(input.get(second)),
+                        numerics::to_prm_string(current), swept_rotor ? "rotor" : "stator"}});
+    for (const Plot &p : plots)
+    {
+      const PlotResult plot = run_plot_script(p.script, p.arguments, dir + p.png, python);
+      if (plot.made)
+      {
+        files.push_back(p.png);
+        summary["plots"].push_back(p.png);
+      }
+      else
+      {
+        summary["plot_notes"][p.png] = plot.note;
+        report_skipped_plot("sealfe stability", plot);
+      }
+    }
   }
   summary["files"] = files;
   summary["csv_notes"] = notes;

@@ -433,12 +433,19 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
   if (want_plot && !result.samples.empty())
   {
     const PlotResult plot =
-        run_plot_script("plot_transient.py", {dir + "/transient.csv", dir + "/transient.png"},
+        // C0 and ro of this seal normalise the kinematics (the script's defaults are Green 2002's)
+        run_plot_script("plot_transient.py",
+                        {dir + "/transient.csv", dir + "/transient.png",
+                         numerics::to_prm_string(seal.geometry.clearance),
+                         numerics::to_prm_string(seal.geometry.outer_radius)},
                         dir + "/transient.png");
     if (plot.made)
       files.push_back("transient.png");
     else
+    {
       s["plot_note"] = plot.note;
+      report_skipped_plot("sealfe transient", plot);
+    }
   }
   s["files"] = files;
   s["csv_notes"] = {

@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <system_error>
 
 namespace fs = std::filesystem;
@@ -84,8 +85,14 @@ PlotResult run_plot_script(const std::string &script_name,
     result.note = "plot failed: " + result.command;
     return result;
   }
-  result.note = "plot skipped: no python3 with matplotlib";
+  result.note = "plot skipped: no " + (python.empty() ? std::string("python3") : quoted(python)) +
+                " with matplotlib (install python3-matplotlib or pip install matplotlib)";
   return result;
+}
+
+void report_skipped_plot(const std::string &program, const PlotResult &plot)
+{
+  std::cerr << program << ": " << plot.note << "; to make it: " << plot.command << std::endl;
 }
 
 } // namespace sealfe

@@ -453,15 +453,16 @@ TEST(StabilitySubcommand, ExamplePrmReproducesTable1ReferenceAndClearanceRows)
   EXPECT_EQ(j["eigenvalues"].size(), 8u);
   EXPECT_NEAR(j["stable_range"][0].get<double>(), -10901.8, 0.01 * 10901.8);
   EXPECT_NEAR(j["stable_range"][1].get<double>(), 6024.2, 0.01 * 6024.2);
-  // Table 1, C0 rows (c2 = 0.5)
+  // Table 1, C0 rows (c2 = 0.5): 5, 10, 15 um are values 0, 10, 20 of the example's map
   const double expected[3][2] = {{-12754.0, 6727.4}, {-10901.8, 6024.2}, {-11019.0, 6984.0}};
-  ASSERT_EQ(j["second_parameter_sweep"].size(), 3u);
+  ASSERT_EQ(j["second_parameter_sweep"].size(), 21u);
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int k = 0; k < 2; ++k)
-      EXPECT_NEAR(j["second_parameter_sweep"][i]["stable_range"][k].get<double>(), expected[i][k],
-                  0.01 * std::abs(expected[i][k]));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/stability_growth_rate.csv"));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/stability_sweep.csv"));
+      EXPECT_NEAR(j["second_parameter_sweep"][10 * i]["stable_range"][k].get<double>(),
+                  expected[i][k], 0.01 * std::abs(expected[i][k]));
+  for (const char *file : {"stability_growth_rate.csv", "stability_sweep.csv",
+                           "stability_campbell.csv", "stability_map.csv"})
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
 }
 
 TEST(StabilitySubcommand, RefusesBadInputWithOneLine)

@@ -73,8 +73,9 @@ public:
   SecondOrderSystem matrices(double rotor_speed, double stator_speed) const;
 
   /// Eigenvalues lambda of the free motion q = A e^{lambda t} (LAPACK on the first-order form),
-  /// sorted by decreasing real part. Im(lambda) is a whirl frequency (> 0 forward), the damping
-  /// ratio is -Re(lambda)/|lambda|.
+  /// sorted by decreasing real part. The real equations give each whirling mode as a conjugate
+  /// pair +-Im(lambda); its direction (forward or backward) is in the eigenvector
+  /// (whirl_modes.h). The damping ratio is -Re(lambda)/|lambda|.
   std::vector<std::complex<double>> eigenvalues(double rotor_speed, double stator_speed) const;
   /// max Re(lambda) (1/s): the growth rate of the least stable mode.
   double growth_rate(double rotor_speed, double stator_speed) const;

@@ -78,6 +78,8 @@ struct SealDynamicsInput
   /// Set a named scalar (a "Second parameter" of the stability sweep); see the list in
   /// parameter_names(). "Clearance" keeps beta* ro/C0 if hold_normalized_coning.
   void set(const std::string &name, double value, bool hold_normalized_coning);
+  /// The value of a named scalar of parameter_names() (the operating point of a stability map).
+  double get(const std::string &name) const;
   static std::string parameter_names();
 
 private:

@@ -26,4 +26,8 @@ PlotResult run_plot_script(const std::string &script_name,
                            const std::vector<std::string> &arguments, const std::string &png,
                            const std::string &python = "", const std::string &script = "");
 
+/// One line on stderr for a plot that was not made: "<program>: <note>; to make it: <command>"
+/// (a missing matplotlib is said, never skipped silently).
+void report_skipped_plot(const std::string &program, const PlotResult &plot);
+
 } // namespace sealfe
