@@ -11,14 +11,15 @@ writes them (README, "Looking at the result in ParaView"): pressure [Pa], film_t
 volume_flux [m^2/s], liquid_fraction [-] (JFO; absent for other models), cavitated [-].
 """
 import argparse
+import math
 import os
 import sys
 
 from paraview.simple import (AssignViewToLayout, Calculator, ColorBy, Contour, CreateLayout,
-                             CreateView, GetActiveViewOrCreate, GetColorTransferFunction,
-                             GetLayout, GetOpacityTransferFunction, GetScalarBar, Glyph, Hide,
-                             LoadPalette, OpenDataFile, Render, SaveScreenshot, SetActiveView,
-                             Show, StreamTracer, Text, UpdatePipeline)
+                             CreateView, Delete, Disk, GetColorTransferFunction,
+                             GetOpacityTransferFunction, GetScalarBar, Glyph, LoadPalette,
+                             OpenDataFile, Render, ResampleWithDataset, SaveScreenshot,
+                             SetActiveView, Show, StreamTracer, Text)
 from paraview import servermanager
 
 DEFAULT_FILE = os.path.join("sealfe-output", "solve", "solution.pvd")
@@ -39,8 +40,8 @@ def parse(argv):
                         help="solution.pvd, .pvtu or .vtu (default: $SEALFE_SOLUTION or "
                         + DEFAULT_FILE + ")")
     parser.add_argument("--png", help="save a screenshot of the three views and exit")
-    parser.add_argument("--size", nargs=2, type=int, default=[2400, 760], metavar=("W", "H"),
-                        help="screenshot size in pixels (default 2400 760)")
+    parser.add_argument("--size", nargs=2, type=int, default=[2700, 750], metavar=("W", "H"),
+                        help="screenshot size in pixels (default 2700 750)")
     parser.add_argument("--subdivision", type=int, default=2,
                         help="nonlinear subdivision level of the Lagrange cells (default 2)")
     parser.add_argument("--flux", choices=["glyphs", "streams", "none"], default="glyphs",
@@ -58,7 +59,22 @@ def pressure_unit(p_max):
     return "Pa", 1.0
 
 
-def style_bar(lut, view, title):
+def nice_ticks(lo, hi, count=5):
+    """Round tick values inside [lo, hi], away from the range labels at both ends."""
+    if not hi > lo:
+        return []
+    raw = (hi - lo) / count
+    magnitude = 10.0 ** math.floor(math.log10(raw))
+    step = next(m * magnitude for m in (1, 2, 2.5, 5, 10) if m * magnitude >= raw)
+    ticks, value = [], math.ceil(lo / step) * step
+    while value <= hi:
+        if lo + 0.06 * (hi - lo) < value < hi - 0.06 * (hi - lo):
+            ticks.append(round(value, 12))
+        value += step
+    return ticks
+
+
+def style_bar(lut, view, title, lo, hi, label_format="%-#.3g"):
     bar = GetScalarBar(lut, view)
     bar.Title = title
     bar.ComponentTitle = ""
@@ -66,30 +82,34 @@ def style_bar(lut, view, title):
     bar.LabelFontSize = 17
     bar.TitleBold = 1
     bar.ScalarBarThickness = 20
-    bar.ScalarBarLength = 0.6
+    bar.ScalarBarLength = 0.7
     bar.WindowLocation = "Any Location"
     bar.Orientation = "Vertical"
-    bar.Position = [0.84, 0.2]
+    bar.Position = [0.80, 0.15]
     bar.AddRangeLabels = 1
-    bar.RangeLabelFormat = "%-#.3g"
+    bar.RangeLabelFormat = label_format
     bar.AutomaticLabelFormat = 0
-    bar.LabelFormat = "%-#.3g"
+    bar.LabelFormat = label_format
+    bar.UseCustomLabels = 1
+    bar.CustomLabels = nice_ticks(lo, hi, 6)
     bar.Visibility = 1
     return bar
 
 
-def top_view(view, bounds):
-    """Camera on +z looking down at the annulus, x to the right, y up, parallel projection."""
+def top_view(view, bounds, aspect):
+    """Camera on +z looking down at the annulus, x to the right, y up, parallel projection;
+    the annulus on the left of a view of width/height = aspect, the colour bar on the right."""
     view.InteractionMode = "2D"
     view.OrientationAxesVisibility = 0
     cx, cy = 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])
-    extent = max(bounds[1] - bounds[0], bounds[3] - bounds[2])
-    # Leave room on the right for the colour bar.
-    view.CameraFocalPoint = [cx + 0.17 * extent, cy, 0.0]
-    view.CameraPosition = [cx + 0.17 * extent, cy, 2.0 * extent]
+    radius = 0.5 * max(bounds[1] - bounds[0], bounds[3] - bounds[2])
+    half_height = max(1.1 * radius, 1.45 * radius / aspect)
+    shift = half_height * aspect - 1.04 * radius
+    view.CameraFocalPoint = [cx + shift, cy, 0.0]
+    view.CameraPosition = [cx + shift, cy, 4.0 * radius]
     view.CameraViewUp = [0.0, 1.0, 0.0]
     view.CameraParallelProjection = 1
-    view.CameraParallelScale = 0.56 * extent
+    view.CameraParallelScale = half_height
 
 
 def title(view, text):
@@ -109,43 +129,49 @@ def coloured(source, view, array, subdivision):
     return display
 
 
-def flux_overlay(source, view, bounds, kind):
-    """volume_flux on the pressure view: arrows scaled by its magnitude, or stream lines."""
+def flux_overlay(source, view, kind):
+    """volume_flux on the pressure view: arrows on rings through the annulus, their length
+    proportional to the flux, or stream lines seeded on a radius."""
     flux_max = source.PointData["volume_flux"].GetRange(-1)[1]
     if flux_max <= 0.0:
         return
-    width = 0.5 * (bounds[1] - bounds[0])
+    r_in, r_out = annulus_radii(source)
+    band = r_out - r_in
     if kind == "glyphs":
-        glyphs = Glyph(Input=source, GlyphType="Arrow")
+        rings, per_ring = 3, 48
+        seeds = Disk(InnerRadius=r_in + 0.18 * band, OuterRadius=r_out - 0.18 * band,
+                     RadialResolution=rings - 1, CircumferentialResolution=per_ring)
+        probe = ResampleWithDataset(SourceDataArrays=source, DestinationMesh=seeds)
+        probe.PassPointArrays = 0
+        glyphs = Glyph(Input=probe, GlyphType="Arrow")
         glyphs.OrientationArray = ["POINTS", "volume_flux"]
         glyphs.ScaleArray = ["POINTS", "volume_flux"]
-        glyphs.ScaleFactor = 0.09 * width / flux_max
-        glyphs.GlyphMode = "Uniform Spatial Distribution (Surface Sampling)"
-        glyphs.MaximumNumberOfSamplePoints = 400
-        glyphs.Seed = 1
-        display = Show(glyphs, view)
-        # Lift the arrows off the film's plane so the surface does not hide them.
-        display.Position = [0.0, 0.0, 0.01 * width]
-        display.ColorArrayName = [None, '']
-        display.AmbientColor = display.DiffuseColor = [0.0, 0.85, 1.0]
-        display.Ambient = 1.0
-        display.Diffuse = 0.0
+        # The longest arrow is 0.95 of the spacing along the middle ring.
+        glyphs.ScaleFactor = 0.95 * math.pi * (r_in + r_out) / per_ring / flux_max
+        glyphs.GlyphMode = "All Points"
+        glyphs.GlyphType.TipLength = 0.35
+        glyphs.GlyphType.TipRadius = 0.22
+        glyphs.GlyphType.ShaftRadius = 0.08
+        overlay = glyphs
     else:
-        # Seeds on a radial line through the annulus; integrate both ways along the flux.
-        r_in, r_out = annulus_radii(source)
+        # Seeds on a radius of the annulus; one turn along the flux both ways.
         tracer = StreamTracer(Input=source, SeedType="Line")
         tracer.Vectors = ["POINTS", "volume_flux"]
-        tracer.SeedType.Point1 = [r_in * 1.001, 0.0, 0.0]
-        tracer.SeedType.Point2 = [r_out * 0.999, 0.0, 0.0]
-        tracer.SeedType.Resolution = 12
+        tracer.SeedType.Point1 = [r_in + 0.1 * band, 0.0, 0.0]
+        tracer.SeedType.Point2 = [r_out - 0.1 * band, 0.0, 0.0]
+        tracer.SeedType.Resolution = 4
         tracer.IntegrationDirection = "BOTH"
-        tracer.MaximumStreamlineLength = 20.0 * width
+        tracer.MaximumStreamlineLength = 1.05 * math.pi * r_out
         tracer.MaximumSteps = 20000
-        display = Show(tracer, view)
-        display.Position = [0.0, 0.0, 0.01 * width]
-        display.ColorArrayName = [None, '']
-        display.AmbientColor = display.DiffuseColor = [0.0, 0.85, 1.0]
-        display.LineWidth = 1.5
+        overlay = tracer
+    display = Show(overlay, view)
+    # Lift the overlay off the film's plane so the surface does not hide it.
+    display.Position = [0.0, 0.0, 0.02 * r_out]
+    display.ColorArrayName = [None, ""]
+    display.AmbientColor = display.DiffuseColor = [0.0, 0.85, 1.0]
+    display.Ambient = 1.0
+    display.Diffuse = 0.0
+    display.LineWidth = 2.0
 
 
 def annulus_radii(source):
@@ -154,7 +180,7 @@ def annulus_radii(source):
                         Function="sqrt(coordsX^2+coordsY^2)")
     radius.UpdatePipeline()
     r_in, r_out = radius.PointData["r_tmp"].GetRange()
-    Hide(radius)
+    Delete(radius)
     return r_in, r_out
 
 
@@ -202,10 +228,10 @@ def build(args):
     lut.ApplyPreset("Inferno (matplotlib)", True)
     lut.RescaleTransferFunction(p_lo * scale, p_hi * scale)
     lut.AutomaticRescaleRangeMode = "Never"
-    style_bar(lut, p_view, "pressure [%s]" % unit)
+    style_bar(lut, p_view, "pressure [%s]" % unit, p_lo * scale, p_hi * scale)
     if args.flux != "none" and "volume_flux" in names:
-        flux_overlay(reader, p_view, bounds, args.flux)
-    title(p_view, "pressure" + ("  + volume flux" if args.flux != "none" else ""))
+        flux_overlay(reader, p_view, args.flux)
+    title(p_view, "pressure" + (" and volume flux" if args.flux != "none" else ""))
 
     # Film thickness in micrometres, sequential over the range of the data.
     display = coloured(film, h_view, "film_thickness_um", args.subdivision)
@@ -214,7 +240,7 @@ def build(args):
     h_lo, h_hi = film.PointData["film_thickness_um"].GetRange()
     lut.RescaleTransferFunction(h_lo, h_hi)
     lut.AutomaticRescaleRangeMode = "Never"
-    style_bar(lut, h_view, "film thickness [\u00b5m]")
+    style_bar(lut, h_view, "film thickness [\u00b5m]", h_lo, h_hi)
     title(h_view, "film thickness")
 
     # Liquid fraction on 0..1: cavity grey, full film blue; the cavity's edge outlined.
@@ -226,7 +252,7 @@ def build(args):
         lut.AutomaticRescaleRangeMode = "Never"
         lut.Annotations = ["1", "full film"]
         GetOpacityTransferFunction("liquid_fraction").RescaleTransferFunction(0.0, 1.0)
-        bar = style_bar(lut, s_view, "liquid fraction [-]")
+        bar = style_bar(lut, s_view, "liquid fraction [-]", 0.0, 1.0, "%.1f")
         bar.DrawAnnotations = 1
         if "cavitated" in names and reader.PointData["cavitated"].GetRange()[1] > 0.5:
             edge = Contour(Input=reader, ContourBy=["POINTS", "cavitated"], Isosurfaces=[0.5])
@@ -244,7 +270,7 @@ def build(args):
 
     for view in views:
         Render(view)
-        top_view(view, bounds)
+        top_view(view, bounds, args.size[0] / 3.0 / args.size[1])
     SetActiveView(p_view)
     return layout, views
 
