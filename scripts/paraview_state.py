@@ -32,6 +32,21 @@ CAVITY_RGB_POINTS = [0.0, 0.20, 0.20, 0.20,
                      1.0] + FULL_FILM_RGB
 
 
+# ParaView's "Arial" in the Debian package draws [ ] like ( ); DejaVu Sans, where installed,
+# keeps the "name [unit]" titles of sealfe's tables.
+FONT_DIR = "/usr/share/fonts/truetype/dejavu"
+FONT = os.path.join(FONT_DIR, "DejaVuSans.ttf")
+FONT_BOLD = os.path.join(FONT_DIR, "DejaVuSans-Bold.ttf")
+
+
+def set_font(proxy, prefix="", bold=False):
+    """Give a text property group (prefix "", "Title" or "Label") the DejaVu font if present."""
+    path = FONT_BOLD if bold else FONT
+    if os.path.exists(path):
+        setattr(proxy, prefix + "FontFamily", "File")
+        setattr(proxy, prefix + "FontFile", path)
+
+
 def parse(argv):
     parser = argparse.ArgumentParser(prog="paraview_state.py",
                                      description=__doc__.splitlines()[0])
@@ -46,6 +61,8 @@ def parse(argv):
                         help="nonlinear subdivision level of the Lagrange cells (default 2)")
     parser.add_argument("--flux", choices=["glyphs", "streams", "none"], default="glyphs",
                         help="volume_flux on the pressure view (default glyphs)")
+    parser.add_argument("--cavity-edge", action="store_true",
+                        help="outline the cavity (cavitated = 0.5) on the liquid fraction view")
     parser.add_argument("--last", action="store_true",
                         help="show the last time of a .pvd (default: the first)")
     return parser.parse_args(argv)
@@ -92,6 +109,8 @@ def style_bar(lut, view, title, lo, hi, label_format="%-#.3g"):
     bar.LabelFormat = label_format
     bar.UseCustomLabels = 1
     bar.CustomLabels = nice_ticks(lo, hi, 6)
+    set_font(bar, "Title", bold=True)
+    set_font(bar, "Label")
     bar.Visibility = 1
     return bar
 
@@ -118,6 +137,7 @@ def title(view, text):
     display.WindowLocation = "Upper Center"
     display.FontSize = 22
     display.Bold = 1
+    set_font(display, bold=True)
     return label
 
 
@@ -243,7 +263,7 @@ def build(args):
     style_bar(lut, h_view, "film thickness [\u00b5m]", h_lo, h_hi)
     title(h_view, "film thickness")
 
-    # Liquid fraction on 0..1: cavity grey, full film blue; the cavity's edge outlined.
+    # Liquid fraction on 0..1: cavity grey, full film blue (optionally the cavity's edge).
     if "liquid_fraction" in names:
         display = coloured(reader, s_view, "liquid_fraction", args.subdivision)
         lut = GetColorTransferFunction("liquid_fraction")
@@ -254,7 +274,7 @@ def build(args):
         GetOpacityTransferFunction("liquid_fraction").RescaleTransferFunction(0.0, 1.0)
         bar = style_bar(lut, s_view, "liquid fraction [-]", 0.0, 1.0, "%.1f")
         bar.DrawAnnotations = 1
-        if "cavitated" in names and reader.PointData["cavitated"].GetRange()[1] > 0.5:
+        if args.cavity_edge and "cavitated" in names:
             edge = Contour(Input=reader, ContourBy=["POINTS", "cavitated"], Isosurfaces=[0.5])
             edge_display = Show(edge, s_view)
             edge_display.Position = [0.0, 0.0, 0.005 * (bounds[1] - bounds[0])]
