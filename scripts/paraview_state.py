@@ -55,8 +55,8 @@ def parse(argv):
                         help="solution.pvd, .pvtu or .vtu (default: $SEALFE_SOLUTION or "
                         + DEFAULT_FILE + ")")
     parser.add_argument("--png", help="save a screenshot of the three views and exit")
-    parser.add_argument("--size", nargs=2, type=int, default=[2700, 750], metavar=("W", "H"),
-                        help="screenshot size in pixels (default 2700 750)")
+    parser.add_argument("--size", nargs=2, type=int, default=[2100, 620], metavar=("W", "H"),
+                        help="screenshot size in pixels (default 2100 620)")
     parser.add_argument("--subdivision", type=int, default=2,
                         help="nonlinear subdivision level of the Lagrange cells (default 2)")
     parser.add_argument("--flux", choices=["glyphs", "streams", "none"], default="glyphs",
@@ -76,39 +76,43 @@ def pressure_unit(p_max):
     return "Pa", 1.0
 
 
-def nice_ticks(lo, hi, count=5):
-    """Round tick values inside [lo, hi], away from the range labels at both ends."""
+def nice_ticks(lo, hi, count=6):
+    """Round tick values inside [lo, hi], away from the range labels at both ends, and the
+    printf format that shows them (as many decimals as the step needs)."""
     if not hi > lo:
-        return []
+        return [], "%-.3g"
     raw = (hi - lo) / count
     magnitude = 10.0 ** math.floor(math.log10(raw))
-    step = next(m * magnitude for m in (1, 2, 2.5, 5, 10) if m * magnitude >= raw)
+    mantissa = next(m for m in (1, 2, 2.5, 5, 10) if m * magnitude >= raw)
+    step = mantissa * magnitude
+    decimals = max(0, -int(math.floor(math.log10(step) + 1e-9)) + (mantissa == 2.5))
     ticks, value = [], math.ceil(lo / step) * step
     while value <= hi:
         if lo + 0.06 * (hi - lo) < value < hi - 0.06 * (hi - lo):
             ticks.append(round(value, 12))
         value += step
-    return ticks
+    return ticks, "%%-.%df" % decimals
 
 
-def style_bar(lut, view, title, lo, hi, label_format="%-#.3g"):
+def style_bar(lut, view, title, lo, hi):
     bar = GetScalarBar(lut, view)
     bar.Title = title
     bar.ComponentTitle = ""
-    bar.TitleFontSize = 20
-    bar.LabelFontSize = 17
+    bar.TitleFontSize = 24
+    bar.LabelFontSize = 22
     bar.TitleBold = 1
-    bar.ScalarBarThickness = 20
+    bar.ScalarBarThickness = 22
     bar.ScalarBarLength = 0.7
     bar.WindowLocation = "Any Location"
     bar.Orientation = "Vertical"
-    bar.Position = [0.80, 0.15]
+    bar.Position = [0.77, 0.13]
+    ticks, label_format = nice_ticks(lo, hi)
     bar.AddRangeLabels = 1
     bar.RangeLabelFormat = label_format
     bar.AutomaticLabelFormat = 0
     bar.LabelFormat = label_format
     bar.UseCustomLabels = 1
-    bar.CustomLabels = nice_ticks(lo, hi, 6)
+    bar.CustomLabels = ticks
     set_font(bar, "Title", bold=True)
     set_font(bar, "Label")
     bar.Visibility = 1
@@ -135,7 +139,7 @@ def title(view, text):
     label = Text(Text=text)
     display = Show(label, view)
     display.WindowLocation = "Upper Center"
-    display.FontSize = 22
+    display.FontSize = 26
     display.Bold = 1
     set_font(display, bold=True)
     return label
@@ -158,7 +162,7 @@ def flux_overlay(source, view, kind):
     r_in, r_out = annulus_radii(source)
     band = r_out - r_in
     if kind == "glyphs":
-        rings, per_ring = 3, 48
+        rings, per_ring = 3, 40
         seeds = Disk(InnerRadius=r_in + 0.18 * band, OuterRadius=r_out - 0.18 * band,
                      RadialResolution=rings - 1, CircumferentialResolution=per_ring)
         probe = ResampleWithDataset(SourceDataArrays=source, DestinationMesh=seeds)
@@ -170,8 +174,8 @@ def flux_overlay(source, view, kind):
         glyphs.ScaleFactor = 0.95 * math.pi * (r_in + r_out) / per_ring / flux_max
         glyphs.GlyphMode = "All Points"
         glyphs.GlyphType.TipLength = 0.35
-        glyphs.GlyphType.TipRadius = 0.22
-        glyphs.GlyphType.ShaftRadius = 0.08
+        glyphs.GlyphType.TipRadius = 0.26
+        glyphs.GlyphType.ShaftRadius = 0.1
         overlay = glyphs
     else:
         # Seeds on a radius of the annulus; one turn along the flux both ways.
@@ -270,10 +274,8 @@ def build(args):
         lut.ColorSpace = "RGB"
         lut.RGBPoints = CAVITY_RGB_POINTS
         lut.AutomaticRescaleRangeMode = "Never"
-        lut.Annotations = ["1", "full film"]
         GetOpacityTransferFunction("liquid_fraction").RescaleTransferFunction(0.0, 1.0)
-        bar = style_bar(lut, s_view, "liquid fraction [-]", 0.0, 1.0, "%.1f")
-        bar.DrawAnnotations = 1
+        style_bar(lut, s_view, "liquid fraction [-]", 0.0, 1.0)
         if args.cavity_edge and "cavitated" in names:
             edge = Contour(Input=reader, ContourBy=["POINTS", "cavitated"], Isosurfaces=[0.5])
             edge_display = Show(edge, s_view)
@@ -281,9 +283,11 @@ def build(args):
             edge_display.ColorArrayName = [None, '']
             edge_display.AmbientColor = edge_display.DiffuseColor = [0.85, 0.1, 0.1]
             edge_display.LineWidth = 2.0
-        title(s_view, "liquid fraction (JFO)")
+        full = reader.PointData["liquid_fraction"].GetRange()[0] >= 1.0
+        title(s_view, "liquid fraction" + (": full film everywhere" if full
+                                           else " (blue: full film)"))
     else:
-        title(s_view, "no liquid_fraction (not a JFO run)")
+        title(s_view, "no liquid_fraction in the file")
         display = Show(reader, s_view)
         display.NonlinearSubdivisionLevel = args.subdivision
         display.ColorArrayName = [None, '']
