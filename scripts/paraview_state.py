@@ -15,11 +15,11 @@ import math
 import os
 import sys
 
-from paraview.simple import (AssignViewToLayout, Calculator, ColorBy, Contour, CreateLayout,
-                             CreateView, Delete, Disk, GetColorTransferFunction,
-                             GetOpacityTransferFunction, GetScalarBar, Glyph, LoadPalette,
-                             OpenDataFile, Render, ResampleWithDataset, SaveScreenshot,
-                             SetActiveView, Show, StreamTracer, Text)
+from paraview.simple import (Calculator, ColorBy, Contour, CreateLayout, CreateView, Delete,
+                             Disk, GetActiveView, GetColorTransferFunction, GetLayout,
+                             GetOpacityTransferFunction, GetScalarBar, GetViewsInLayout, Glyph,
+                             LoadPalette, OpenDataFile, Render, ResampleWithDataset,
+                             SaveScreenshot, SetActiveView, Show, StreamTracer, Text)
 from paraview import servermanager
 
 DEFAULT_FILE = os.path.join("sealfe-output", "solve", "solution.pvd")
@@ -98,10 +98,7 @@ def style_bar(lut, view, title, lo, hi):
     bar = GetScalarBar(lut, view)
     bar.Title = title
     bar.ComponentTitle = ""
-    bar.TitleFontSize = 24
-    bar.LabelFontSize = 22
     bar.TitleBold = 1
-    bar.ScalarBarThickness = 22
     bar.ScalarBarLength = 0.7
     bar.WindowLocation = "Any Location"
     bar.Orientation = "Vertical"
@@ -117,6 +114,20 @@ def style_bar(lut, view, title, lo, hi):
     set_font(bar, "Label")
     bar.Visibility = 1
     return bar
+
+
+def fit_text(view, width):
+    """Font sizes and colour bar thickness in proportion to the view's width in pixels
+    (the sizes below are for 700 pixels)."""
+    factor = width / 700.0
+    for representation in view.Representations:
+        kind = representation.GetXMLName()
+        if kind == "ScalarBarWidgetRepresentation":
+            representation.TitleFontSize = max(8, round(24 * factor))
+            representation.LabelFontSize = max(7, round(22 * factor))
+            representation.ScalarBarThickness = max(8, round(22 * factor))
+        elif kind == "TextSourceRepresentation":
+            representation.FontSize = max(8, round(26 * factor))
 
 
 def top_view(view, bounds, aspect):
@@ -139,7 +150,6 @@ def title(view, text):
     label = Text(Text=text)
     display = Show(label, view)
     display.WindowLocation = "Upper Center"
-    display.FontSize = 26
     display.Bold = 1
     set_font(display, bold=True)
     return label
@@ -208,6 +218,31 @@ def annulus_radii(source):
     return r_in, r_out
 
 
+def three_views(name):
+    """Three render views side by side in one layout. In the GUI the layout on screen is used
+    when it holds just its first view (ParaView 5.11 hung here assigning views to a new,
+    hidden layout tab); pvbatch and pvpython get a new layout."""
+    active = GetActiveView()
+    layout = GetLayout(active) if active else None
+    if layout is not None and len(GetViewsInLayout(layout)) == 1 \
+            and active.GetXMLName() == "RenderView":
+        first = active
+    else:
+        layout, first = CreateLayout(name), None
+    if first is None:
+        first = CreateView("RenderView")
+        layout.AssignView(0, first)
+    # The first view moves to the left cell (1); the right cell (2) splits into 5 and 6.
+    layout.SplitHorizontal(0, 1.0 / 3.0)
+    layout.SplitHorizontal(2, 0.5)
+    views = [first]
+    for index in (5, 6):
+        view = CreateView("RenderView")
+        layout.AssignView(index, view)
+        views.append(view)
+    return layout, views
+
+
 def build(args):
     path = os.path.abspath(args.file)
     if not os.path.exists(path):
@@ -233,17 +268,9 @@ def build(args):
     for source in (pressure, film):
         source.UpdatePipeline(time)
 
-    layout = CreateLayout("sealfe " + os.path.basename(path))
-    views = []
-    for _ in range(3):
-        view = CreateView("RenderView")
+    layout, views = three_views("sealfe " + os.path.basename(path))
+    for view in views:
         view.ViewTime = time
-        views.append(view)
-    # Three equal cells side by side.
-    layout.SplitHorizontal(0, 1.0 / 3.0)
-    layout.SplitHorizontal(2, 0.5)
-    for index, view in zip((1, 5, 6), views):
-        AssignViewToLayout(view=view, layout=layout, hint=index)
     p_view, h_view, s_view = views
 
     # Pressure, sequential over the range of the data, volume_flux on top.
@@ -294,7 +321,11 @@ def build(args):
 
     for view in views:
         Render(view)
-        top_view(view, bounds, args.size[0] / 3.0 / args.size[1])
+        width, height = view.ViewSize
+        if args.png or not (width > 0 and height > 0):
+            width, height = args.size[0] / 3.0, args.size[1]
+        top_view(view, bounds, width / height)
+        fit_text(view, width)
     SetActiveView(p_view)
     return layout, views
 
