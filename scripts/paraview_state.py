@@ -1,14 +1,16 @@
-"""usage: pvbatch paraview_state.py [solution.{pvd,pvtu,vtu}] [--png out.png] [--size W H] [--subdivision N] [--flux glyphs|streams|none] [--last]
+"""usage: pvbatch paraview_state.py [solution.{pvd,pvtu,vtu}] [--png out.png] [--size W H] [--subdivision N] [--flux glyphs|streams|none] [--cavity-edge] [--last]
 
-ParaView picture of a sealfe field file: pressure, film thickness and liquid fraction side by
-side, the annulus seen from +z. With --png it saves a screenshot (pvbatch, no window); without it
-it only sets up the three views (pvpython opens an interactive window; in the ParaView GUI load it
-with File > Load State or Python Shell > Run Script: the file then comes from the environment
-variable SEALFE_SOLUTION, else sealfe-output/solve/solution.pvd).
+ParaView picture of a sealfe field file: pressure (with volume_flux arrows), film thickness and
+liquid fraction side by side, the annulus seen from +z, Lagrange cells subdivided (level 2).
+With --png it saves a screenshot (pvbatch, no window). Without it it only sets up the three views:
+pvpython then opens an interactive window per view (the pressure one takes the mouse); in the
+ParaView GUI run it with `paraview --script=scripts/paraview_state.py` or Python Shell > Run
+Script (it fills the layout on screen), or File > Load State; there the file comes from the
+environment variable SEALFE_SOLUTION, else sealfe-output/solve/solution.pvd.
 
 Written against paraview.simple of ParaView 5.11 (Debian 12); not part of CI. Fields as sealfe
 writes them (README, "Looking at the result in ParaView"): pressure [Pa], film_thickness [m],
-volume_flux [m^2/s], liquid_fraction [-] (JFO; absent for other models), cavitated [-].
+volume_flux [m^2/s], liquid_fraction [-] (1 in the full film), cavitated [-].
 """
 import argparse
 import math
@@ -49,7 +51,8 @@ def set_font(proxy, prefix="", bold=False):
 
 def parse(argv):
     parser = argparse.ArgumentParser(prog="paraview_state.py",
-                                     description=__doc__.splitlines()[0])
+                                     description="Pressure, film thickness and liquid "
+                                     "fraction of a sealfe solution side by side.")
     parser.add_argument("file", nargs="?", default=os.environ.get("SEALFE_SOLUTION",
                                                                   DEFAULT_FILE),
                         help="solution.pvd, .pvtu or .vtu (default: $SEALFE_SOLUTION or "
@@ -354,5 +357,6 @@ def main(argv):
         Interact(views[0])
 
 
-if __name__ == "__main__":
+# "__vtkconsole__": loaded in the GUI with File > Load State.
+if __name__ in ("__main__", "__vtkconsole__"):
     main(sys.argv[1:])
