@@ -87,10 +87,25 @@ def main():
     ap.add_argument("--sealfe", default=os.path.join(REPO, "build", "sealfe"))
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--parts", default="amg,ranks,jfo")
+    ap.add_argument("--plot-only", action="store_true", help="redraw scaling.png from scaling.csv")
     a = ap.parse_args()
-    parts = a.parts.split(",")
+    parts = [] if a.plot_only else a.parts.split(",")
     work = tempfile.mkdtemp(prefix="sealfe-scaling-")
     rows = []
+    if a.plot_only:
+        for r in csv.DictReader(open(os.path.join(HERE, "scaling.csv"))):
+            for key, v in list(r.items()):
+                if v == "":
+                    del r[key]
+                else:
+                    try:
+                        r[key] = int(v)
+                    except ValueError:
+                        try:
+                            r[key] = float(v)
+                        except ValueError:
+                            pass
+            rows.append(r)
     if "amg" in parts:
         for k in (1, 2, 3):
             max_dofs = 70000 if a.quick else (4_300_000 if k == 2 else 1_200_000)
@@ -145,10 +160,11 @@ def main():
                   f"force_z rel. diff {abs(r['force_z'] / o['force_z'] - 1):.1e}, "
                   f"moment_x rel. diff {abs(r['moment_x'] / o['moment_x'] - 1):.1e}")
     keys = sorted({k for r in rows for k in r})
-    with open(os.path.join(HERE, "scaling.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    if not a.plot_only:
+        with open(os.path.join(HERE, "scaling.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=keys)
+            w.writeheader()
+            w.writerows(rows)
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -178,17 +194,21 @@ def main():
             x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
             xs = [1e4, 5e6]
             ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
-        # CG iterations against the aspect, at the largest size of each degree and aspect
-        for k in (1, 2, 3):
-            pts = []
-            for aspect in (1, 2, 16, 32):
-                sel = [r for r in rows if r["study"] == "amg" and r["degree"] == k
-                       and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
-                if sel:
-                    pts.append((aspect, max(sel, key=lambda r: r["dofs"])["cg_iterations"]))
-            if pts:
-                ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + "-",
-                               label=f"k={k} (largest mesh of each aspect)", base=2)
+        # CG iterations against the aspect, at comparable sizes: the mesh of each degree and
+        # aspect nearest (in log) to 3e4, 2.5e5 and 1e6 dofs
+        for target, style in ((3e4, ":"), (2.5e5, "--"), (1e6, "-")):
+            for k in (1, 2, 3):
+                pts = []
+                for aspect in (1, 2, 16, 32):
+                    sel = [r for r in rows if r["study"] == "amg" and r["degree"] == k
+                           and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
+                    if sel:
+                        best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
+                        if abs(math.log(best["dofs"] / target)) < math.log(2.5):
+                            pts.append((aspect, best["cg_iterations"]))
+                if pts:
+                    ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
+                                   label=f"k={k}, ~{target:.0e} dofs", base=2)
         ax[0].set_xlabel("dofs"); ax[0].set_ylabel("whole-process wall time [s]")
         ax[0].set_title("full film, CG + AMG (one run each, shared machine)", fontsize=9)
         ax[0].legend(fontsize=6, ncol=2)
