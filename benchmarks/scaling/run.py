@@ -1,25 +1,35 @@
 #!/usr/bin/python3
 """Scaling benchmark of the sealfe FE Reynolds solver (issue 13, "Scale and speed").
 
-    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--sealfe build/sealfe]
+    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,ranks,jfo] [--sealfe build/sealfe]
 
 Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps = 0.5), with
 `Error estimate = false`, `Write fields = false`. Runs
-  1. the CG + AMG ladder: degrees 1-3, aspects Ntheta/Nr = 1, 2, 16, 32, sizes 1e4 .. ~1e6 dofs
-     (`Linear solver = cg-amg`), recording dofs, CG iterations, process and solve-stage time;
-  2. JFO against full film on the same mesh (`Linear solver = auto`), degree 2, aspect 2 and
-     prm/wavy_jfo.prm, recording the time ratio, Newton iterations and factorisations.
-Writes benchmarks/scaling/scaling.csv and scaling.png (time against dofs, CG iterations against
-dofs per aspect). Each run once (the machine is shared: treat times as upper bounds).
+  1. amg: the CG + AMG ladder, degrees 1-3, aspects Ntheta/Nr = 1, 2, 16, 32, sizes 1e4 .. 1.1e6
+     dofs (degree 2: to 4.3e6), `Linear solver = cg-amg`, one rank, recording dofs, CG
+     iterations, process and stage times;
+  2. ranks: the full-film size ladder, degree 2, Ntheta/Nr = 16 (the 1.05e6-dof mesh 128 x 2048
+     of issue 13 is on it), 4e3 .. 4.2e6 dofs, on 1 and 2 MPI ranks (`mpirun -np 2`), with the
+     time exponent fitted from 1e5 dofs up;
+  3. jfo: JFO against full film on the same mesh (`Linear solver = auto`), degree 2, aspect 2
+     and prm/wavy_jfo.prm, recording the time ratio, Newton iterations and factorisations.
+Writes benchmarks/scaling/scaling.csv and scaling.png (process time against dofs; CG iterations
+against dofs per degree and aspect; CG iterations against the aspect). Each run once (the
+machine is shared: treat times as upper bounds; iteration counts are exact). --quick: up to
+7e4 dofs (about a minute); the full run takes about 20 minutes on the 2-core machine.
 """
-import argparse, csv, json, os, shutil, subprocess, tempfile, time
+import argparse, csv, json, math, os, shutil, subprocess, tempfile, time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 BASE = open(os.path.join(REPO, "benchmarks", "reynolds_speed", "case.prm")).read()
 
 
-def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE):
+MPIRUN = ["mpirun", "--oversubscribe", "-np", "2"]
+MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, ranks=1):
     out = tempfile.mkdtemp(dir=work)
     prm = base + f"""
 set Output directory = {out}
@@ -41,7 +51,8 @@ end
     path = out + ".prm"
     open(path, "w").write(prm)
     t = time.perf_counter()
-    r = subprocess.run([sealfe, "solve", path], capture_output=True, text=True, timeout=1800)
+    cmd = (MPIRUN if ranks > 1 else []) + [sealfe, "solve", path]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=MPI_ENV)
     wall = time.perf_counter() - t
     if r.returncode:
         return {"error": r.stderr.strip()[-300:], "process_wall": wall}
@@ -49,74 +60,169 @@ end
     shutil.rmtree(out, ignore_errors=True)
     st = s.get("stage_wall_time", {})
     ls = s.get("linear_solver", {})
-    return {"dofs": s["dofs"], "process_wall": round(wall, 3), "inprocess": s.get("wall_time"),
+    return {"dofs": s["dofs"], "ranks": ranks, "process_wall": round(wall, 3),
+            "inprocess": s.get("wall_time"), "setup": st.get("setup", 0),
+            "assemble": st.get("assemble", 0), "loads": st.get("loads", 0),
             "solve": st.get("solve", 0), "cavitation_time": st.get("cavitation", 0),
             "linear_setup": st.get("linear solver setup", 0),
             "cg_iterations": ls.get("krylov_iterations"), "method": ls.get("method"),
             "factorizations": ls.get("factorizations"),
             "newton": s.get("cavitation", {}).get("nonlinear_iterations"),
-            "force_z": s["force_z"]}
+            "force_z": s["force_z"], "moment_x": s["moment_x"]}
+
+
+def fit_exponent(rows):
+    """Least-squares slope of log(process time) against log(dofs), dofs >= 1e5."""
+    pts = [(math.log(r["dofs"]), math.log(r["process_wall"])) for r in rows
+           if "dofs" in r and r["dofs"] >= 1e5]
+    if len(pts) < 2:
+        return None
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    return sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sealfe", default=os.path.join(REPO, "build", "sealfe"))
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--parts", default="amg,ranks,jfo")
+    ap.add_argument("--plot-only", action="store_true", help="redraw scaling.png from scaling.csv")
     a = ap.parse_args()
+    parts = [] if a.plot_only else a.parts.split(",")
     work = tempfile.mkdtemp(prefix="sealfe-scaling-")
-    max_dofs = 70000 if a.quick else 1_100_000
     rows = []
-    for k in (1, 2, 3):
-        for aspect in (1, 2, 16, 32):
-            nr = 8
-            while True:
-                nt = aspect * nr
-                dofs = (k * nr + 1) * k * nt
-                if dofs > max_dofs:
-                    break
-                if dofs >= 10000:
-                    r = run(a.sealfe, work, k, nr, nt)
-                    r.update(study="amg", degree=k, aspect=aspect, nr=nr, nt=nt)
-                    print(r, flush=True)
-                    rows.append(r)
-                nr *= 2
-    wavy = open(os.path.join(REPO, "prm", "wavy_jfo.prm")).read()
-    for name, base, meshes in (("tilted VG", BASE, [(2, 32, 64), (2, 64, 128), (2, 128, 256)]),
-                               ("wavy_jfo", wavy, [(2, 8, 256), (2, 16, 512), (2, 32, 1024)])):
-        for (k, nr, nt) in meshes[: 2 if a.quick else 3]:
-            full = run(a.sealfe, work, k, nr, nt, "auto", "none", base)
-            jfo = run(a.sealfe, work, k, nr, nt, "auto", "jfo", base)
-            r = dict(jfo, study="jfo " + name, degree=k, nr=nr, nt=nt,
-                     full_film_wall=full.get("process_wall"),
-                     jfo_ratio_process=jfo.get("process_wall", 0) / full.get("process_wall", 1),
-                     jfo_ratio_inprocess=(jfo.get("inprocess") or 0) / (full.get("inprocess") or 1))
-            print(r, flush=True)
+    if a.plot_only:
+        for r in csv.DictReader(open(os.path.join(HERE, "scaling.csv"))):
+            for key, v in list(r.items()):
+                if v == "":
+                    del r[key]
+                else:
+                    try:
+                        r[key] = int(v)
+                    except ValueError:
+                        try:
+                            r[key] = float(v)
+                        except ValueError:
+                            pass
             rows.append(r)
+    if "amg" in parts:
+        for k in (1, 2, 3):
+            max_dofs = 70000 if a.quick else (4_300_000 if k == 2 else 1_200_000)
+            for aspect in (1, 2, 16, 32):
+                if aspect == 16 and k == 2 and "ranks" in parts:
+                    continue  # measured by the rank ladder below
+                nr = 8
+                while True:
+                    nt = aspect * nr
+                    dofs = (k * nr + 1) * k * nt
+                    if dofs > max_dofs:
+                        break
+                    if dofs >= 10000:
+                        r = run(a.sealfe, work, k, nr, nt)
+                        r.update(study="amg", degree=k, aspect=aspect, nr=nr, nt=nt)
+                        print(r, flush=True)
+                        rows.append(r)
+                    nr *= 2
+    if "ranks" in parts:
+        for nr in (8, 16, 32) if a.quick else (8, 16, 32, 64, 128, 256):
+            for ranks in (1, 2):
+                r = run(a.sealfe, work, 2, nr, 16 * nr, ranks=ranks)
+                r.update(study="amg", degree=2, aspect=16, nr=nr, nt=16 * nr)
+                print(r, flush=True)
+                rows.append(r)
+    if "jfo" in parts:
+        wavy = open(os.path.join(REPO, "prm", "wavy_jfo.prm")).read()
+        for name, base, meshes in (("tilted VG", BASE, [(2, 32, 64), (2, 64, 128), (2, 128, 256)]),
+                                   ("wavy_jfo", wavy, [(2, 8, 256), (2, 16, 512), (2, 32, 1024)])):
+            for (k, nr, nt) in meshes[: 2 if a.quick else 3]:
+                full = run(a.sealfe, work, k, nr, nt, "auto", "none", base)
+                jfo = run(a.sealfe, work, k, nr, nt, "auto", "jfo", base)
+                r = dict(jfo, study="jfo " + name, degree=k, nr=nr, nt=nt,
+                         full_film_wall=full.get("process_wall"),
+                         jfo_ratio_process=jfo.get("process_wall", 0) / full.get("process_wall", 1),
+                         jfo_ratio_inprocess=(jfo.get("inprocess") or 0) / (full.get("inprocess") or 1))
+                print(r, flush=True)
+                rows.append(r)
+    for ranks in (1, 2):
+        sel = [r for r in rows if r.get("study") == "amg" and r.get("degree") == 2
+               and r.get("aspect") == 16 and r.get("ranks") == ranks]
+        e = fit_exponent(sel)
+        if e is not None:
+            print(f"k=2, aspect 16, {ranks} rank(s): process time ~ dofs^{e:.3f} (dofs >= 1e5)")
+    one = {r["nr"]: r for r in rows if r.get("aspect") == 16 and r.get("degree") == 2
+           and r.get("ranks") == 1 and "dofs" in r}
+    for r in rows:
+        if r.get("aspect") == 16 and r.get("degree") == 2 and r.get("ranks") == 2 \
+                and "dofs" in r and r["nr"] in one:
+            o = one[r["nr"]]
+            print(f"{r['dofs']} dofs: 2 ranks {o['process_wall'] / r['process_wall']:.2f}x faster, "
+                  f"force_z rel. diff {abs(r['force_z'] / o['force_z'] - 1):.1e}, "
+                  f"moment_x rel. diff {abs(r['moment_x'] / o['moment_x'] - 1):.1e}")
     keys = sorted({k for r in rows for k in r})
-    with open(os.path.join(HERE, "scaling.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    if not a.plot_only:
+        with open(os.path.join(HERE, "scaling.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=keys)
+            w.writeheader()
+            w.writerows(rows)
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(1, 2, figsize=(11, 4.5))
+        fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
+        colours = {1: "tab:blue", 2: "tab:orange", 16: "tab:green", 32: "tab:red"}
+        markers = {1: "s", 2: "o", 3: "^"}
         for k in (1, 2, 3):
             for aspect in (1, 2, 16, 32):
-                sel = [r for r in rows if r["study"] == "amg" and r["degree"] == k
-                       and r["aspect"] == aspect and "dofs" in r]
-                if not sel:
-                    continue
-                lab = f"k={k}, Nθ/Nr={aspect}"
-                ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel], "o-",
-                             label=lab)
-                ax[1].semilogx([r["dofs"] for r in sel], [r["cg_iterations"] for r in sel],
-                               "o-", label=lab)
-        ax[0].set_xlabel("dofs"); ax[0].set_ylabel("process wall time [s]")
-        ax[1].set_xlabel("dofs"); ax[1].set_ylabel("CG iterations (rtol 1e-12)")
-        ax[1].axhline(25, color="k", ls=":")
+                for ranks in (1, 2):
+                    sel = sorted([r for r in rows if r["study"] == "amg" and r["degree"] == k
+                                  and r["aspect"] == aspect and r.get("ranks") == ranks
+                                  and "dofs" in r], key=lambda r: r["dofs"])
+                    if not sel:
+                        continue
+                    lab = f"k={k}, Nθ/Nr={aspect}" + (", 2 ranks" if ranks == 2 else "")
+                    style = "--" if ranks == 2 else "-"
+                    ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                 markers[k] + style, color=colours[aspect], label=lab, ms=4)
+                    if ranks == 1:
+                        ax[1].semilogx([r["dofs"] for r in sel], [r["cg_iterations"] for r in sel],
+                                       markers[k] + "-", color=colours[aspect], label=lab, ms=4)
+        # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
+        ref = [r for r in rows if r.get("nr") == 128 and r.get("aspect") == 16
+               and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
+        if ref:
+            x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
+            xs = [1e4, 5e6]
+            ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
+        # CG iterations against the aspect, at comparable sizes: the mesh of each degree and
+        # aspect nearest (in log) to 3e4, 2.5e5 and 1e6 dofs
+        for target, style in ((3e4, ":"), (2.5e5, "--"), (1e6, "-")):
+            for k in (1, 2, 3):
+                pts = []
+                for aspect in (1, 2, 16, 32):
+                    sel = [r for r in rows if r["study"] == "amg" and r["degree"] == k
+                           and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
+                    if sel:
+                        best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
+                        if abs(math.log(best["dofs"] / target)) < math.log(2.5):
+                            pts.append((aspect, best["cg_iterations"]))
+                if pts:
+                    ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
+                                   label=f"k={k}, ~{target:.0e} dofs", base=2)
+        ax[0].set_xlabel("dofs"); ax[0].set_ylabel("whole-process wall time [s]")
+        ax[0].set_title("full film, CG + AMG (one run each, shared machine)", fontsize=9)
+        ax[0].legend(fontsize=6, ncol=2)
+        ax[1].set_xlabel("dofs"); ax[1].set_ylabel("CG iterations (relative residual 1e-12)")
+        ax[1].set_title("CG iterations against size", fontsize=9)
+        ax[1].axhline(25, color="k", ls=":", lw=1)
         ax[1].legend(fontsize=6, ncol=2)
+        ax[2].set_xlabel("cell aspect Nθ/Nr (cells around / cells across)")
+        ax[2].set_ylabel("CG iterations (relative residual 1e-12)")
+        ax[2].set_title("CG iterations against aspect", fontsize=9)
+        ax[2].axhline(25, color="k", ls=":", lw=1)
+        ax[2].legend(fontsize=7)
+        for x in ax[1:]:
+            x.set_ylim(bottom=0)
         fig.tight_layout()
         fig.savefig(os.path.join(HERE, "scaling.png"), dpi=110)
     except ImportError:

@@ -168,22 +168,32 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
   }
 
   Triangulation<2> coarse;
+  // Built-in mesh: a coarse polar grid, `extra` times coarser than the nr x nt cells asked for,
+  // refined globally, then every vertex put where the direct construction would put it. p4est
+  // then holds a few coarse cells (trees) instead of one per cell: at 128 x 2048 cells the
+  // setup of one tree per cell took most of the setup stage (doc/performance.md).
+  unsigned int extra = 0;
+  if (mesh_file.empty())
+    while ((nr >> extra) % 2 == 0 && (nt >> extra) % 2 == 0 &&
+           (nt >> extra) / 2 >= min_coarse_cells)
+      ++extra;
   if (mesh_file.empty())
   {
     // Vertices on a polar grid; cells (i, j) span [r_i, r_i+1] x [theta_j, theta_j+1], wrapping
     // around in theta. Lexicographic vertex order (r fastest) keeps the cells right-handed.
+    const unsigned int nr0 = nr >> extra, nt0 = nt >> extra;
     std::vector<Point<2>> vertices;
     const std::vector<double> radii = radial_nodes(nr, ri, ro);
-    for (unsigned int j = 0; j < nt; ++j)
-      for (unsigned int i = 0; i <= nr; ++i)
+    for (unsigned int j = 0; j < nt0; ++j)
+      for (unsigned int i = 0; i <= nr0; ++i)
       {
-        const double r = radii[i], t = 2 * M_PI * j / nt;
+        const double r = radii[i << extra], t = 2 * M_PI * j / nt0;
         vertices.emplace_back(r * std::cos(t), r * std::sin(t));
       }
-    auto index = [&](unsigned int i, unsigned int j) { return (j % nt) * (nr + 1) + i; };
+    auto index = [&](unsigned int i, unsigned int j) { return (j % nt0) * (nr0 + 1) + i; };
     std::vector<CellData<2>> cells;
-    for (unsigned int j = 0; j < nt; ++j)
-      for (unsigned int i = 0; i < nr; ++i)
+    for (unsigned int j = 0; j < nt0; ++j)
+      for (unsigned int i = 0; i < nr0; ++i)
       {
         CellData<2> c;
         c.vertices = {index(i, j), index(i + 1, j), index(i, j + 1), index(i + 1, j + 1)};
@@ -222,7 +232,59 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
   tria.copy_triangulation(coarse);
   tria.set_all_manifold_ids(0);
   tria.set_manifold(0, PolarManifold<2>(Point<2>()));
-  tria.refine_global(refinements);
+  tria.refine_global(refinements + extra);
+  if (extra > 0)
+    place_vertices(tria, radial_nodes(nr, ri, ro), nt, extra, refinements);
+}
+
+void AnnulusMesh::place_vertices(parallel::distributed::Triangulation<2> &tria,
+                                 const std::vector<double> &radii, const unsigned int nt,
+                                 const unsigned int extra, const unsigned int refinements)
+{
+  // Refinement on the polar manifold halves cells in (r, theta): a vertex lies at the mean radius
+  // of its parents, i.e. the radii now interpolate the coarse nodes linearly. The mesh asked for
+  // has the graded nodes `radii` (nr + 1 of them), refined `refinements` times the same way. Both
+  // lists are sorted and far apart compared with round-off, so a vertex is identified by the
+  // nearest radius of the first list and moved to the same index of the second; theta is put
+  // back on the exact grid 2 pi j / (nt 2^refinements) that the direct construction uses.
+  const unsigned int nr = radii.size() - 1;
+  auto interpolate = [](const std::vector<double> &nodes, const unsigned int levels)
+  {
+    const unsigned int f = 1u << levels, n = nodes.size() - 1;
+    std::vector<double> out(n * f + 1);
+    for (unsigned int i = 0; i < n * f; ++i)
+    {
+      const double s = double(i % f) / f;
+      out[i] = (1 - s) * nodes[i / f] + s * nodes[i / f + 1];
+    }
+    out[n * f] = nodes[n];
+    return out;
+  };
+  std::vector<double> coarse_radii;
+  for (unsigned int i = 0; i <= nr; i += (1u << extra))
+    coarse_radii.push_back(radii[i]);
+  const std::vector<double> now = interpolate(coarse_radii, extra + refinements);
+  const std::vector<double> wanted = interpolate(radii, refinements);
+  const double n_theta = double(nt) * double(1u << refinements);
+  std::vector<bool> moved(tria.n_vertices(), false);
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const unsigned int v : cell->vertex_indices())
+      if (!moved[cell->vertex_index(v)])
+      {
+        moved[cell->vertex_index(v)] = true;
+        Point<2> &x = cell->vertex(v);
+        const double rho = x.norm();
+        const auto above = std::lower_bound(now.begin(), now.end(), rho);
+        std::size_t i = above - now.begin();
+        if (i == now.size() || (i > 0 && rho - now[i - 1] < *above - rho))
+          --i;
+        double turns = std::atan2(x[1], x[0]) / (2 * M_PI);
+        if (turns < 0)
+          turns += 1;
+        const long j = std::lround(turns * n_theta) % long(n_theta);
+        const double t = 2 * M_PI * double(j) / n_theta;
+        x = Point<2>(wanted[i] * std::cos(t), wanted[i] * std::sin(t));
+      }
 }
 
 } // namespace sealfe

@@ -10,6 +10,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_cache.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -77,7 +78,13 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   mesh_parameters.create(triangulation, film.inner_radius, film.outer_radius, coarsening);
 
   fe = std::make_unique<FE_Q<2>>(polynomial_degree);
-  mapping = std::make_unique<MappingQ<2>>(polynomial_degree);
+  // The mapping's support points come from the polar manifold (a pull-back and push-forward per
+  // point): computed once per mesh and shared by the assembly, the loads, the support points of
+  // the AMG and the field output, instead of once per cell in each of them. The same points as
+  // MappingQ's, so the same geometry.
+  auto cached = std::make_unique<MappingQCache<2>>(polynomial_degree);
+  cached->initialize(MappingQ<2>(polynomial_degree), triangulation);
+  mapping = std::move(cached);
   dof_handler.distribute_dofs(*fe);
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();
@@ -177,13 +184,28 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence)
                             dof_handler.n_dofs() >= FilmLinearSolver::direct_solver_limit);
   if (may_use_amg && amg_support_x.empty())
   {
-    std::map<types::global_dof_index, Point<2>> support;
-    DoFTools::map_dofs_to_support_points(*mapping, dof_handler, support);
-    for (const auto i : locally_owned_dofs)
-    {
-      amg_support_x.push_back(support[i][0]);
-      amg_support_y.push_back(support[i][1]);
-    }
+    // The support points of the locally owned dofs, in the order of locally_owned_dofs (the
+    // rows of this rank), from one pass over the cells (DoFTools::map_dofs_to_support_points
+    // fills a std::map: 0.4 s of the AMG set-up at 1e6 dofs).
+    const unsigned int n_owned = locally_owned_dofs.n_elements();
+    amg_support_x.assign(n_owned, 0.0);
+    amg_support_y.assign(n_owned, 0.0);
+    FEValues<2> fe_values(*mapping, *fe, Quadrature<2>(fe->get_unit_support_points()),
+                          update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          if (locally_owned_dofs.is_element(dofs[i]))
+          {
+            const auto k = locally_owned_dofs.index_within_set(dofs[i]);
+            amg_support_x[k] = fe_values.quadrature_point(i)[0];
+            amg_support_y[k] = fe_values.quadrature_point(i)[1];
+          }
+      }
   }
   linear_system_solver.prepare(system_matrix, symmetric, linear_solver, polynomial_degree,
                                solver_tolerance, amg_support_x, amg_support_y, newton_sequence);

@@ -46,6 +46,10 @@ public:
   /// True if a mesh `coarsening` levels coarser than the requested one can be built.
   bool can_coarsen(const unsigned int coarsening) const;
 
+  /// The built-in mesh is built from a coarse grid with at least this many cells around and
+  /// refined globally (few p4est trees); the vertices end where the direct construction puts them.
+  static constexpr unsigned int min_coarse_cells = 16;
+
   unsigned int radial_cells = 8;
   unsigned int circumferential_cells = 128;
   unsigned int global_refinements = 0;
@@ -55,6 +59,13 @@ public:
   double grading_clearance = 1;
   double grading_coning = 0;
   double grading_exponent = 1.5;
+
+private:
+  /// Move the vertices of the refined coarse grid (`extra` + `refinements` global refinements)
+  /// to the nodes of the mesh asked for: graded `radii`, nt 2^refinements uniform angles.
+  static void place_vertices(dealii::parallel::distributed::Triangulation<2> &tria,
+                             const std::vector<double> &radii, const unsigned int nt,
+                             const unsigned int extra, const unsigned int refinements);
 };
 
 } // namespace sealfe
