@@ -447,6 +447,8 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   locally_relevant_void.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
   if (cavitation.is_nonlinear())
     solve_cavitation();
+  if (start_only)
+    return FilmLoads();
   const FilmLoads loads = compute_loads();
   // at extreme bearing numbers the viscous terms cancel to round-off (doc/guarantees.md)
   refuse_round_off_collapse(estimate_round_off(film, conditions, loads));

@@ -197,6 +197,9 @@ private:
   /// JFO mesh sequencing: the solver of the mesh twice as coarse (kept, so that its mesh is
   /// reused too).
   std::unique_ptr<ReynoldsSolver> coarse_solver;
+  /// A mesh-sequencing level: its JFO state only starts the finer mesh, so run() accepts the
+  /// active-set state of a band round without the global check and computes no loads.
+  bool start_only = false;
 
   dealii::parallel::distributed::Triangulation<2> triangulation;
   std::unique_ptr<dealii::FE_Q<2>> fe;
