@@ -37,7 +37,8 @@ const char *FilmLinearSolver::method_name() const
 
 void FilmLinearSolver::clear()
 {
-  direct.reset();
+  direct.clear();
+  pending = false;
   amg.reset();
   matrix = nullptr;
   lagged = false;
@@ -47,7 +48,7 @@ void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
                                const bool symmetric_in, const FilmSettings::LinearSolver choice,
                                const unsigned int degree_in, const double tolerance_in,
                                const std::vector<double> &x, const std::vector<double> &y,
-                               const bool allow_reuse)
+                               const bool allow_reuse, const bool deferred)
 {
   // CG needs a symmetric matrix: the cavitation Newton systems never get it, whatever the
   // setting asks for.
@@ -73,9 +74,15 @@ void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
   tolerance = tolerance_in;
   support_x = &x;
   support_y = &y;
+  pending = false;
   if (can_reuse)
   {
     lagged = true;
+    return;
+  }
+  if (deferred)
+  {
+    pending = true;
     return;
   }
   build_preconditioner();
@@ -86,16 +93,20 @@ void FilmLinearSolver::build_preconditioner()
   // One factorisation (or AMG hierarchy) per matrix, reused by the solve and by every linearised
   // solve of the dynamic coefficients.
   lagged = false;
+  pending = false;
   ++stats.factorizations;
-  direct.reset();
-  amg.reset();
   if (current_method == Method::direct)
   {
-    direct_control = std::make_unique<SolverControl>(1, 0);
-    direct = std::make_unique<TrilinosWrappers::SolverDirect>(*direct_control);
-    direct->initialize(*matrix);
+    // KLU keeps its ordering while the matrix keeps its pattern (the Newton Jacobians of a
+    // cavitation solve are assembled into one matrix).
+    amg.reset();
+    const unsigned int before = direct.numeric_only();
+    direct.factorize(*matrix);
+    stats.symbolic_reuses += direct.numeric_only() - before;
     return;
   }
+  direct.clear();
+  amg.reset();
   // Smoothed aggregation. The cells of the annulus are long and thin (a dam ~45 times narrower
   // than its circumference), so the matrix couples a node far more strongly to its radial
   // neighbours than to its circumferential ones. ML's default aggregation on the matrix does
@@ -162,6 +173,8 @@ unsigned int FilmLinearSolver::krylov_solve(const VectorType &rhs, VectorType &x
 unsigned int FilmLinearSolver::solve(const VectorType &rhs, VectorType &x)
 {
   ++stats.solves;
+  if (pending)
+    build_preconditioner();
   if (lagged)
   {
     // A preconditioner of an earlier matrix: a few GMRES iterations, else rebuild it.
@@ -177,7 +190,7 @@ unsigned int FilmLinearSolver::solve(const VectorType &rhs, VectorType &x)
   }
   if (current_method == Method::direct)
   {
-    direct->solve(x, rhs);
+    direct.solve(rhs, x);
     return 1;
   }
   if (current_method == Method::gmres_amg)
@@ -191,7 +204,7 @@ unsigned int FilmLinearSolver::solve(const VectorType &rhs, VectorType &x)
     x = start;
     current_method = Method::direct;
     build_preconditioner();
-    direct->solve(x, rhs);
+    direct.solve(rhs, x);
     return 1;
   }
   return krylov_solve(rhs, x, std::max<unsigned int>(1000, matrix->m() / 10), true);

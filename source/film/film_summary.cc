@@ -268,6 +268,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
       {"solves", linear.statistics().solves},
       {"krylov_iterations", linear.statistics().krylov_iterations},
       {"max_krylov_iterations", linear.statistics().max_krylov_iterations},
+      {"symbolic_reuses", linear.statistics().symbolic_reuses},
       {"reused_preconditioners", linear.statistics().reused_preconditioners}};
   summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
   // Discrete mass balance: what leaves through the two circles plus the squeeze flow, relative
@@ -296,11 +297,16 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
       std::cerr << "sealfe: warning: " << undershoot << std::endl;
   }
   const char *names[] = {"none", "half-sommerfeld", "reynolds", "jfo"};
-  summary["cavitation"] = {{"model", names[static_cast<int>(solver.cavitation.model)]},
-                           {"cavitation_pressure", solver.cavitation.pressure},
-                           {"nonlinear_iterations", solver.nonlinear_iterations()},
-                           {"coarse_level_iterations", solver.coarse_nonlinear_iterations()},
-                           {"final_residual", solver.nonlinear_residual()}};
+  summary["cavitation"] = {
+      {"model", names[static_cast<int>(solver.cavitation.model)]},
+      {"cavitation_pressure", solver.cavitation.pressure},
+      {"nonlinear_iterations", solver.nonlinear_iterations()},
+      {"coarse_level_iterations", solver.coarse_nonlinear_iterations()},
+      {"newton_steps", solver.newton_steps()},
+      {"active_set_rounds", solver.active_set_rounds()},
+      {"coarse_level_factorizations", solver.coarse_level_factorizations()},
+      {"coarse_level_krylov_iterations", solver.coarse_level_krylov_iterations()},
+      {"final_residual", solver.nonlinear_residual()}};
   summary["roughness"] = {{"model", solver.flow_factors.is_smooth() ? "none" : "patir-cheng"},
                           {"composite_roughness", solver.flow_factors.composite_roughness()},
                           {"clamped_evaluations", solver.flow_factors.clamp_count()},

@@ -174,7 +174,8 @@ void ReynoldsSolver::assemble_system()
   system_rhs.compress(VectorOperation::add);
 }
 
-void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence)
+void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
+                               const bool deferred)
 {
   TimerOutput::Scope t(timer, "linear solver setup");
   // The AMG aggregates on the dof support points (film_linear_solver.h): built once per mesh,
@@ -208,7 +209,8 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence)
       }
   }
   linear_system_solver.prepare(system_matrix, symmetric, linear_solver, polynomial_degree,
-                               solver_tolerance, amg_support_x, amg_support_y, newton_sequence);
+                               solver_tolerance, amg_support_x, amg_support_y, newton_sequence,
+                               deferred);
 }
 
 unsigned int ReynoldsSolver::solve_linear_system(const TrilinosWrappers::MPI::Vector &rhs,
@@ -384,19 +386,25 @@ void ReynoldsSolver::solve_cavitation()
         "mass-conserving (jfo) film content is not determined (the solution is not unique); raise "
         "a boundary pressure above the cavitation pressure");
 
-  // Scale of the pressure unknown: the larger of the supply pressure difference and the
-  // full-film pressure excursion.
-  double excursion = 0;
-  for (const auto i : locally_owned_dofs)
-    excursion = std::max(excursion, std::abs(locally_relevant_solution[i] - p_cav));
-  pressure_scale = std::max(Utilities::MPI::max(excursion, mpi_communicator), 1e-300);
-
   // Residual scale: the Couette + squeeze + pressure flow right-hand side of the full film.
   const double flow_scale = std::max(system_rhs.l2_norm(), 1e-300);
   if (jfo)
-    JFOSolver(*this, flow_scale).solve();
+    JFOSolver(*this, flow_scale).solve(); // sets pressure_scale
   else
+  {
+    pressure_scale = full_film_pressure_scale();
     ReynoldsCavitationSolver(*this, flow_scale).solve();
+  }
+}
+
+double ReynoldsSolver::full_film_pressure_scale() const
+{
+  // Scale of the pressure unknown of the cavitation models: the full-film pressure excursion
+  // from p_cav (which includes the supply pressures).
+  double excursion = 0;
+  for (const auto i : locally_owned_dofs)
+    excursion = std::max(excursion, std::abs(locally_relevant_solution[i] - cavitation.pressure));
+  return std::max(Utilities::MPI::max(excursion, mpi_communicator), 1e-300);
 }
 
 FilmLoads ReynoldsSolver::compute_loads() const
@@ -446,15 +454,23 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   linear_system_solver.reset_statistics();
   current_coarsening = coarsening;
   coarse_iterations = 0;
+  coarse_factorizations = coarse_krylov_iterations = 0;
+  jfo_newton_steps = jfo_active_set_rounds = 0;
   setup_system(coarsening);
   assemble_system();
-  solve();
+  // JFO starts from the JFO solution of the mesh twice as coarse (mesh sequencing) and solves
+  // the full film only where that start is not available (JFOSolver::warm_start).
+  last_iterations = 0;
+  if (cavitation.model != Cavitation::jfo)
+    solve();
   cavitation_iterations = 0;
   cavitation_residual = 0;
   pressure_scale = 1;
   locally_relevant_void.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
   if (cavitation.is_nonlinear())
     solve_cavitation();
+  if (start_only)
+    return FilmLoads();
   const FilmLoads loads = compute_loads();
   // at extreme bearing numbers the viscous terms cancel to round-off (doc/guarantees.md)
   refuse_round_off_collapse(estimate_round_off(film, conditions, loads));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <sealfe/film/film_settings.h>
+#include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/lac/trilinos_precondition.h>
@@ -41,7 +42,8 @@ public:
   /// Work counted since construction (summary.json: linear_solver).
   struct Statistics
   {
-    unsigned int factorizations = 0; // KLU factorisations or AMG set-ups
+    unsigned int factorizations = 0;  // KLU factorisations or AMG set-ups
+    unsigned int symbolic_reuses = 0; // KLU factorisations that reused the ordering
     unsigned int solves = 0;
     unsigned int krylov_iterations = 0; // CG or GMRES iterations, all solves
     unsigned int max_krylov_iterations = 0;
@@ -58,10 +60,12 @@ public:
   /// Prepare to solve with `matrix` (kept by reference until the next prepare()). `support_x`,
   /// `support_y`: coordinates of the locally owned dofs (only used by the AMG methods).
   /// `allow_reuse`: the matrix is the next of a sequence with the same pattern (Newton).
+  /// `deferred`: factorise at the first solve() only (a matrix that may never be solved with,
+  /// such as the Jacobian at a JFO solution, which only the linearised loads use).
   void prepare(const dealii::TrilinosWrappers::SparseMatrix &matrix, bool symmetric,
                FilmSettings::LinearSolver choice, unsigned int degree, double tolerance,
                const std::vector<double> &support_x, const std::vector<double> &support_y,
-               bool allow_reuse = false);
+               bool allow_reuse = false, bool deferred = false);
   /// Solve the prepared system; returns the Krylov iterations (1 for a direct solve). Throws
   /// std::runtime_error if the iteration does not converge.
   unsigned int solve(const dealii::TrilinosWrappers::MPI::Vector &rhs,
@@ -83,12 +87,12 @@ private:
   const dealii::TrilinosWrappers::SparseMatrix *matrix = nullptr;
   Method current_method = Method::direct;
   bool symmetric = true;
-  bool lagged = false; // the preconditioner belongs to an earlier matrix
+  bool lagged = false;  // the preconditioner belongs to an earlier matrix
+  bool pending = false; // prepared with `deferred`: not factorised yet
   unsigned int degree = 1;
   double tolerance = 1e-12;
   const std::vector<double> *support_x = nullptr, *support_y = nullptr;
-  std::unique_ptr<dealii::SolverControl> direct_control;
-  std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
+  SparseDirect direct;
   std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
   Statistics stats;
 };

@@ -63,7 +63,8 @@ private:
   double best_merit;
   unsigned int steps_without_progress = 0;
   bool monotone = false;
-  unsigned int active_set_rounds = 0;
+  unsigned int active_set_rounds = 0; // linear solves of the polish, band rounds included
+  unsigned int band_rounds = 0;
 };
 
 } // namespace sealfe

@@ -128,6 +128,13 @@ public:
   /// Newton iterations spent on the coarser meshes that provided the JFO start (mesh sequencing).
   unsigned int coarse_nonlinear_iterations() const { return coarse_iterations; }
   double nonlinear_residual() const { return cavitation_residual; }
+  /// JFO work of the last level: Fischer-Burmeister Newton steps and active-set rounds (their sum
+  /// is nonlinear_iterations()).
+  unsigned int newton_steps() const { return jfo_newton_steps; }
+  unsigned int active_set_rounds() const { return jfo_active_set_rounds; }
+  /// Factorisations (or AMG set-ups) and Krylov iterations of all mesh-sequencing levels.
+  unsigned int coarse_level_factorizations() const { return coarse_factorizations; }
+  unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
   /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
   std::map<std::string, double> stage_times() const;
 
@@ -164,12 +171,14 @@ private:
   void assemble_system();
   /// Prepare the linear solver for system_matrix. `symmetric`: full film or its linearisation
   /// (CG allowed); `newton_sequence`: the next Jacobian of a Newton iteration (the previous
-  /// factorisation may serve as preconditioner).
-  void factorize(bool symmetric = true, bool newton_sequence = false);
+  /// factorisation may serve as preconditioner); `deferred`: factorise at the first solve only.
+  void factorize(bool symmetric = true, bool newton_sequence = false, bool deferred = false);
   unsigned int solve_linear_system(const dealii::TrilinosWrappers::MPI::Vector &rhs,
                                    dealii::TrilinosWrappers::MPI::Vector &x) const;
   void solve();
   void solve_cavitation();
+  /// Scale of the cavitation models' pressure unknown from the full-film solution.
+  double full_film_pressure_scale() const;
   void cell_film_matrices(dealii::FEValues<2> &fe_values,
                           const dealii::DoFHandler<2>::active_cell_iterator &cell,
                           const bool with_void, dealii::FullMatrix<double> &A,
@@ -188,6 +197,9 @@ private:
   /// JFO mesh sequencing: the solver of the mesh twice as coarse (kept, so that its mesh is
   /// reused too).
   std::unique_ptr<ReynoldsSolver> coarse_solver;
+  /// A mesh-sequencing level: its JFO state only starts the finer mesh, so run() accepts the
+  /// active-set state of a band round without the global check and computes no loads.
+  bool start_only = false;
 
   dealii::parallel::distributed::Triangulation<2> triangulation;
   std::unique_ptr<dealii::FE_Q<2>> fe;
@@ -218,6 +230,8 @@ private:
   dealii::TrilinosWrappers::MPI::Vector jfo_elimination;   // d(eliminated)/d(kept)
   unsigned int cavitation_iterations = 0;
   unsigned int coarse_iterations = 0; // Newton iterations spent on the mesh-sequencing levels
+  unsigned int coarse_factorizations = 0, coarse_krylov_iterations = 0;
+  unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0;
   unsigned int current_coarsening = 0;
   double cavitation_residual = 0;
   unsigned int last_iterations = 0;
