@@ -5,9 +5,8 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
-#include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 namespace sealfe
@@ -106,66 +105,23 @@ private:
   const bool rough, contact;
   std::vector<std::vector<double>> shape_values; ///< [output point][cell dof]
 };
-} // namespace
 
-namespace
+/// `text` with `insertion` put before the first `marker`.
+std::string inserted_before(std::string text, const std::string &marker,
+                            const std::string &insertion)
 {
-/// Adds the MPI rank that owns each cell as the Int32 cell array `rank` to the pieces of `vtu`
-/// and declares it in its record `pvtu`.
-void add_rank_cell_data(const std::string &vtu, const std::string &pvtu)
+  const std::size_t at = text.find(marker);
+  AssertThrow(at != std::string::npos, ExcMessage("no " + marker + " in deal.II's VTK output"));
+  return text.insert(at, insertion);
+}
+
+/// Writes `content` to `name`, with a one-line reason if the file system refuses.
+void write_file(const std::string &name, const std::string &content)
 {
-  auto read = [](const std::string &name)
-  {
-    std::ifstream in(name, std::ios::binary);
-    if (!in)
-      throw std::runtime_error("cannot read back the field file " + name);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  // replace the file only once the new content is complete (never half-written)
-  auto replace = [](const std::string &name, const std::string &content)
-  {
-    const std::string temporary = name + ".part";
-    {
-      std::ofstream out(temporary, std::ios::binary);
-      out << content;
-      if (!out.flush())
-        throw std::runtime_error("cannot write the field file " + temporary);
-    }
-    std::filesystem::rename(temporary, name);
-  };
-
-  std::string text = read(vtu);
-  // One <Piece> per rank, in rank order (deal.II writes them with ordered collective writes).
-  std::size_t at = 0;
-  for (unsigned int rank = 0;; ++rank)
-  {
-    const std::size_t piece = text.find("<Piece ", at);
-    if (piece == std::string::npos)
-      break;
-    const std::size_t count = text.find("NumberOfCells=\"", piece);
-    const std::size_t end = text.find("</Piece>", piece);
-    if (count == std::string::npos || end == std::string::npos || count > end)
-      throw std::runtime_error("unexpected layout of the field file " + vtu);
-    const unsigned long n_cells = std::stoul(text.substr(count + 15));
-    std::string cell_data =
-        "<CellData>\n<DataArray type=\"Int32\" Name=\"rank\" format=\"ascii\">\n";
-    cell_data.reserve(cell_data.size() + 2 * n_cells * (std::to_string(rank).size() + 1) + 40);
-    const std::string value = std::to_string(rank) + " ";
-    for (unsigned long c = 0; c < n_cells; ++c)
-      cell_data += value;
-    cell_data += "\n</DataArray>\n</CellData>\n";
-    text.insert(end, cell_data);
-    at = end + cell_data.size() + 8;
-  }
-  replace(vtu, text);
-
-  std::string record = read(pvtu);
-  const std::size_t points = record.find("<PPoints>");
-  if (points == std::string::npos)
-    throw std::runtime_error("unexpected layout of the field record " + pvtu);
-  record.insert(points, "<PCellData>\n      <PDataArray type=\"Int32\" Name=\"rank\" "
-                        "format=\"ascii\"/>\n    </PCellData>\n    ");
-  replace(pvtu, record);
+  std::ofstream out(name, std::ios::binary);
+  out << content;
+  if (!out.flush())
+    throw std::runtime_error("cannot write the field file " + name);
 }
 } // namespace
 
@@ -220,17 +176,37 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   flags.compression_level = DataOutBase::VtkFlags::best_speed;
   data_out.set_flags(flags);
   data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
-  const std::string pvtu = data_out.write_vtu_with_pvtu_record(directory + "/", basename, counter,
-                                                               s.mpi_communicator, 4, 1);
-  // `rank` as true cell data (deal.II 9.4 writes cell vectors as point data): added to the
-  // pieces once every rank has written its own
+  // Each rank writes its own piece with `rank` as true cell data (deal.II 9.4 writes cell
+  // vectors as point data): one Int32 per patch, i.e. per cell, inserted into the piece in
+  // memory before it is written.
+  const unsigned int rank = Utilities::MPI::this_mpi_process(s.mpi_communicator);
+  const std::string stem = basename + "_" + Utilities::int_to_string(counter, 4);
+  auto piece_name = [&stem](const unsigned int r)
+  { return stem + "." + std::to_string(r) + ".vtu"; };
+  std::ostringstream piece;
+  data_out.write_vtu(piece);
+  std::string rank_cells =
+      "<CellData>\n<DataArray type=\"Int32\" Name=\"rank\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < data_out.get_patches().size(); ++c)
+    rank_cells += std::to_string(rank) + " ";
+  rank_cells += "\n</DataArray>\n</CellData>\n";
+  write_file(directory + "/" + piece_name(rank),
+             inserted_before(piece.str(), "</Piece>", rank_cells));
+  if (rank == 0)
+  {
+    std::vector<std::string> pieces;
+    for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(s.mpi_communicator); ++r)
+      pieces.push_back(piece_name(r));
+    std::ostringstream record;
+    data_out.write_pvtu_record(record, pieces);
+    write_file(directory + "/" + stem + ".pvtu",
+               inserted_before(record.str(), "<PPoints>",
+                               "<PCellData>\n      <PDataArray type=\"Int32\" Name=\"rank\" "
+                               "format=\"ascii\"/>\n    </PCellData>\n    "));
+  }
+  // every piece is on disk before the caller publishes the directory
   MPI_Barrier(s.mpi_communicator);
-  if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
-    add_rank_cell_data(directory + "/" + basename + "_" + Utilities::int_to_string(counter, 4) +
-                           ".0.vtu",
-                       directory + "/" + pvtu);
-  MPI_Barrier(s.mpi_communicator);
-  return pvtu;
+  return stem + ".pvtu";
 }
 
 std::string write_film_output(const ReynoldsSolver &s, const std::string &directory)
