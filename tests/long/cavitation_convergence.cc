@@ -2,6 +2,8 @@
 // cavitated fraction against a fine reference (32 x 512 cells, degree 2), observed orders.
 #include <sealfe/film/reynolds_solver.h>
 
+#include "../cavitating_wavy_seal.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,14 +25,8 @@ FilmLoads solve(const FilmThickness &film, const OperatingConditions &conditions
 
 TEST(CavitationLong, JfoMeshConvergenceAgainstReference)
 {
-  FilmThickness film;
-  film.coning = 0;
-  film.wave_amplitude = 0.5 * film.clearance;
-  film.wave_number = 3;
-  film.tilt = 0.2 * film.clearance / film.outer_radius;
-  OperatingConditions conditions;
-  conditions.inner_pressure = 2e4;
-  conditions.outer_pressure = 5e4;
+  const FilmThickness film = sealfe::testing::wavy_film();
+  const OperatingConditions conditions = sealfe::testing::low_pressure();
   std::vector<FilmLoads> l;
   for (const unsigned int k : {1u, 2u, 4u})
     l.push_back(solve(film, conditions, 4 * k, 64 * k));

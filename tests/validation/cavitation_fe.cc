@@ -9,11 +9,16 @@
 
 #include <deal.II/base/timer.h>
 
+#include "../cavitating_wavy_seal.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 using namespace sealfe;
+
+using sealfe::testing::low_pressure;
+using sealfe::testing::wavy_film;
 
 namespace
 {
@@ -30,24 +35,6 @@ FilmLoads solve(const FilmThickness &film, const OperatingConditions &conditions
   return s.run(film, conditions);
 }
 
-/// A wavy, tilted seal whose film cavitates over several arcs at a low sealed pressure.
-FilmThickness wavy_film(const double amplitude_over_c0 = 0.5, const double waves = 3)
-{
-  FilmThickness f;
-  f.coning = 0;
-  f.wave_amplitude = amplitude_over_c0 * f.clearance;
-  f.wave_number = waves;
-  f.tilt = 0.2 * f.clearance / f.outer_radius;
-  return f;
-}
-
-OperatingConditions low_pressure()
-{
-  OperatingConditions c;
-  c.inner_pressure = 2e4;
-  c.outer_pressure = 5e4;
-  return c;
-}
 } // namespace
 
 TEST(CavitationFE, WithoutCavitationAllModelsAreTheFullFilm)

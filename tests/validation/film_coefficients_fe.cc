@@ -12,6 +12,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include "../cavitating_wavy_seal.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -246,14 +248,8 @@ TEST(FilmCoefficientsFE, PerturbationMatchesCentralDifferencesWithJFO)
   // set (pressure and liquid fraction together, ReynoldsSolver::linearized_loads), the exact
   // derivative wherever that set does not change within the step; as for Reynolds, the nodes
   // that change it lie in an O(step) band: stated tolerance 1e-4 at step 1e-4 for every entry.
-  FilmThickness film;
-  film.coning = 0;
-  film.wave_amplitude = 0.5 * film.clearance;
-  film.wave_number = 3;
-  film.tilt = 0.2 * film.clearance / film.outer_radius;
-  OperatingConditions conditions;
-  conditions.inner_pressure = 2e4;
-  conditions.outer_pressure = 5e4;
+  const FilmThickness film = sealfe::testing::wavy_film();
+  const OperatingConditions conditions = sealfe::testing::low_pressure();
   const CavitatingCheck c = check_cavitating(Cavitation::jfo, film, conditions, 8, 128, {1e-4});
   EXPECT_GT(c.cavitated_fraction, 0.5);
   EXPECT_LT(c.damping[0], 1e-4);

@@ -12,6 +12,8 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
+#include "../cavitating_wavy_seal.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,28 +21,11 @@
 
 using namespace sealfe;
 
+using sealfe::testing::low_pressure;
+using sealfe::testing::wavy_film;
+
 namespace
 {
-/// The wavy, slightly tilted seal of tests/validation/cavitation_fe.cc at a low sealed pressure:
-/// the film ruptures behind each of three waves.
-FilmThickness wavy_film()
-{
-  FilmThickness f;
-  f.coning = 0;
-  f.wave_amplitude = 0.5 * f.clearance;
-  f.wave_number = 3;
-  f.tilt = 0.2 * f.clearance / f.outer_radius;
-  return f;
-}
-
-OperatingConditions low_pressure()
-{
-  OperatingConditions c;
-  c.inner_pressure = 2e4;
-  c.outer_pressure = 5e4;
-  return c;
-}
-
 FilmLoads solve(ReynoldsSolver &s, const Cavitation model, const unsigned int degree,
                 const unsigned int nr, const unsigned int nt)
 {
@@ -136,9 +121,9 @@ TEST(PressureUndershoot, ReportedInTheSummaryWithAWarningAboveOnePercent)
 {
   ReynoldsSolver s(MPI_COMM_WORLD);
   const FilmLoads l = solve(s, Cavitation::jfo, 2, 4, 64);
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const nlohmann::json j = finite_element_solve_summary(s.settings, s, l, MPI_COMM_WORLD);
-  const std::string err = testing::internal::GetCapturedStderr();
+  const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(j["min_pressure_nodal"].get<double>(), l.min_pressure_nodal);
   EXPECT_EQ(j["pressure_undershoot"].get<double>(), l.pressure_undershoot);
   EXPECT_EQ(j["pressure_undershoot_force"].get<double>(), l.pressure_undershoot_force);
