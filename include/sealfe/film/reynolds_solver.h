@@ -215,7 +215,13 @@ private:
   /// solver count their work in it.
   mutable FilmLinearSolver linear_system_solver;
   std::vector<double> amg_support_x, amg_support_y; // owned dofs' support points (AMG)
+  /// Geometric multigrid on the mesh levels (cg-gmg); its smoother (benchmarks change it).
+  FilmMultigrid multigrid;
 
+public:
+  FilmMultigrid::Parameters multigrid_parameters;
+
+private:
   double equation_scale = 1; // 12 mu / C0^3
 
   // Zero-Dirichlet constraints of corrections and perturbations (built in setup_system).
