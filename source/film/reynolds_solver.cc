@@ -90,6 +90,12 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   cached->initialize(MappingQ<2>(polynomial_degree), triangulation);
   mapping = std::move(cached);
   dof_handler.distribute_dofs(*fe);
+  // The geometric multigrid's line smoother wants the dofs numbered by radial lines.
+  if (FilmLinearSolver::choose(linear_solver, true, dof_handler.n_dofs(),
+                               mesh_parameters.mesh_file.empty() &&
+                                   FilmMultigrid::has_hierarchy(dof_handler)) ==
+      FilmLinearSolver::Method::cg_gmg)
+    FilmMultigrid::number_by_radial_lines(dof_handler, *mapping);
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
