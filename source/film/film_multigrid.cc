@@ -1,10 +1,8 @@
 #include <sealfe/film/film_multigrid.h>
 #include <sealfe/film/sparse_direct.h>
 
-#include <cstdlib>
 #include <deal.II/base/mg_level_object.h>
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
@@ -19,7 +17,6 @@
 #include <deal.II/multigrid/mg_tools.h>
 #include <deal.II/multigrid/mg_transfer.h>
 #include <deal.II/multigrid/multigrid.h>
-#include <iostream>
 
 #include <Epetra_CrsMatrix.h>
 
@@ -334,13 +331,6 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
                           const std::vector<types::boundary_id> &dirichlet_ids)
 {
   clear();
-  Timer timer;
-  auto lap = [&](const char *what)
-  {
-    if (std::getenv("GMG_TIMING"))
-      std::cerr << "gmg " << what << " " << timer.wall_time() << std::endl;
-    timer.restart();
-  };
   dof_handler = &dof_handler_in;
   mapping = &mapping_in;
   data = std::make_unique<Data>();
@@ -358,7 +348,6 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
     dof_handler->renumber_dofs(
         l, numbers_by_lines(dof_handler->locally_owned_mg_dofs(l), data->lines[l]));
   }
-  lap("mg dofs");
   data->constrained_dofs.initialize(*dof_handler);
   data->constrained_dofs.make_zero_boundary_constraints(
       *dof_handler, std::set<types::boundary_id>(dirichlet_ids.begin(), dirichlet_ids.end()));
@@ -405,27 +394,13 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
                                    dof_handler->locally_owned_mg_dofs(l), dsp, comm);
   }
 
-  lap("level sparsity");
   data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
   data->transfer->build(*dof_handler);
-  lap("transfer");
 }
 
 void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
-                            const unsigned int n_gauss, const Parameters &parameters_in)
+                            const unsigned int n_gauss, const Parameters &parameters)
 {
-  Parameters parameters = parameters_in; // TIMING-EXPERIMENT
-  if (const char *e = std::getenv("GMG_DEGREE"))
-    parameters.smoother_degree = std::atoi(e);
-  if (const char *e = std::getenv("GMG_RANGE"))
-    parameters.smoothing_range = std::atof(e);
-  Timer timer;
-  auto lap = [&](const char *what)
-  {
-    if (std::getenv("GMG_TIMING"))
-      std::cerr << "gmg " << what << " " << timer.wall_time() << std::endl;
-    timer.restart();
-  };
   const auto &tria = dof_handler->get_triangulation();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
   const auto &fe = dof_handler->get_fe();
@@ -469,7 +444,6 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     matrix.compress(VectorOperation::add);
   }
 
-  lap("assemble levels");
   data->operators.matrices.resize(n_levels);
   for (unsigned int l = 0; l < n_levels; ++l)
     data->operators.matrices[l] =
@@ -514,7 +488,6 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     }
     data->smoother.smoothers[l].initialize(A, smoother_data);
   }
-  lap("smoothers");
   data->coarse.direct.factorize(*data->operators.matrices[0]);
 
   data->multigrid = std::make_unique<Multigrid<VectorType>>(
@@ -522,7 +495,6 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
   data->preconditioner =
       std::make_unique<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>>(
           *dof_handler, *data->multigrid, *data->transfer);
-  lap("coarse");
 }
 
 void FilmMultigrid::vmult(VectorType &dst, const VectorType &src) const
