@@ -89,6 +89,8 @@ public:
 
   Method method() const { return current_method; }
   const char *method_name() const;
+  /// The sparse direct package of the last factorisation, "KLU" or "MUMPS" ("" if none).
+  const char *direct_package() const { return direct.package_name(); }
   const Statistics &statistics() const { return stats; }
   void reset_statistics() { stats = Statistics(); }
 

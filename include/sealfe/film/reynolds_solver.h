@@ -6,6 +6,7 @@
 
 #include <sealfe/film/film_linear_solver.h>
 #include <sealfe/film/film_loads.h>
+#include <sealfe/film/film_output.h>
 #include <sealfe/film/film_settings.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -162,9 +163,11 @@ private:
   friend class ReynoldsCavitationSolver;
   friend class JFOSolver;
   friend class LoadIntegrator;
-  friend std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory);
+  friend std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory,
+                                       const FieldSelection &fields);
   friend std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
-                                       const std::string &basename, unsigned int counter);
+                                       const std::string &basename, unsigned int counter,
+                                       const FieldSelection &fields);
 
   void setup_system(const unsigned int coarsening);
   void setup_constraints();
