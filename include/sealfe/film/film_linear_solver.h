@@ -1,6 +1,7 @@
 // FilmLinearSolver: the linear solves of the film's discrete Reynolds systems (full film, the
 // linearised coefficient solves, the Newton steps of the cavitation models), with one Trilinos
-// back-end: sparse direct (Amesos KLU) below a size, Krylov + ML algebraic multigrid above.
+// back-end: sparse direct (Amesos KLU or MUMPS, sparse_direct.h) below a size, Krylov +
+// multigrid above.
 #pragma once
 
 #include <sealfe/film/film_multigrid.h>
@@ -21,7 +22,7 @@
 namespace sealfe
 {
 /// Solves A x = b for the matrices of ReynoldsSolver. Four methods:
-///  - direct: KLU factorisation;
+///  - direct: sparse LU factorisation (KLU below 2e4 unknowns, MUMPS above: sparse_direct.h);
 ///  - cg-gmg (symmetric A on the built-in annulus): CG + geometric multigrid on the levels of the
 ///    mesh (film_multigrid.h), whose level operators the owner rebuilds for each matrix;
 ///  - cg-amg (symmetric A: full film, linearised full film): CG + smoothed-aggregation AMG whose
@@ -55,7 +56,7 @@ public:
     unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
   };
 
-  /// Below this many unknowns `auto` factorises (KLU); above it Krylov + AMG.
+  /// Below this many unknowns `auto` factorises symmetric systems; above it Krylov + multigrid.
   static constexpr unsigned int direct_solver_limit = 150000;
   /// A lagged preconditioner is rebuilt when GMRES needs more than this.
   static constexpr unsigned int lagged_iteration_limit = 60;
