@@ -17,8 +17,9 @@ namespace sealfe
 /// Preconditioner for A p = b, A_ij = int K grad phi_j . grad phi_i with zero Dirichlet rows on
 /// both circles (the full film, its linearisation, rough faces). One V-cycle: the level matrices
 /// are re-discretisations of the same operator on the coarser levels of the mesh (K evaluated at
-/// the level cells' quadrature points), Chebyshev smoothing around the point-Jacobi diagonal on
-/// every level, KLU on the coarsest level, prolongation by the finite-element embedding
+/// the level cells' quadrature points), Chebyshev smoothing around radial line Jacobi (each
+/// line of dofs at one angle solved exactly: the cells are long in theta) on every level, KLU
+/// on the coarsest level, prolongation by the finite-element embedding
 /// (MGTransferPrebuilt). The finest level is the system matrix itself when the level and active
 /// numberings coincide (always, so far, on a globally refined mesh; else it is assembled too).
 class FilmMultigrid
