@@ -521,6 +521,13 @@ double ReynoldsSolver::volume_flow_through_circle(const double rho,
   return Utilities::MPI::sum(flow, mpi_communicator);
 }
 
+std::vector<double> ReynoldsSolver::pressure_at(const std::vector<Point<2>> &points) const
+{
+  Utilities::MPI::RemotePointEvaluation<2> cache;
+  return VectorTools::point_values<1>(*mapping, dof_handler, locally_relevant_solution, points,
+                                      cache);
+}
+
 double ReynoldsSolver::l2_error(const Function<2> &exact) const
 {
   Vector<float> cellwise(triangulation.n_active_cells());
