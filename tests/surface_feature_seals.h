@@ -102,8 +102,9 @@ struct DimpledSeal
   std::string cavitation = "jfo";
   bool staggered = false;
 
-  static constexpr double ri = 0.034, ro = 0.040, h = 2e-6, radius = 1e-3, depth = 4e-6,
-                          density = 0.2, omega = 300, ambient = 1e5;
+  double radius = 1e-3;
+  static constexpr double ri = 0.034, ro = 0.040, h = 2e-6, depth = 4e-6, density = 0.2,
+                          omega = 300, ambient = 1e5;
 
   FilmSettings settings() const
   {
