@@ -1,5 +1,6 @@
 #include <sealfe/film/film_loads.h>
 #include <sealfe/film/reynolds_solver.h>
+#include <sealfe/film/surface_features.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -151,7 +152,13 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   const ReynoldsSolver::LocalFilm &f = x.f;
   const double r = f.r, h = f.h, JxW = x.JxW;
   const double liquid = 1 - x.v;
-  const double dp_dtheta = -x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1];
+  // Surface features on the rotor: its face has step walls whose pressure the shear integral
+  // misses. By the torque balance of the film the torque resisting the rotor is the one that
+  // drags the smooth stator face, whose Poiseuille shear has the opposite sign.
+  const double face =
+      solver.film.features && solver.film.features->face == SurfaceFeatures::Face::rotor ? -1.0
+                                                                                         : 1.0;
+  const double dp_dtheta = face * (-x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1]);
   const double liquid_clamped = std::clamp(liquid, 0.0, 1.0);
   const double u1 = solver.conditions.rotor_speed * r, u2 = solver.conditions.stator_speed * r;
   const FlowFactors &flow = solver.flow_factors;
@@ -166,7 +173,7 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   }
   else
   {
-    const double ddp_dtheta = -x.x[1] * d.grad_dp[0] + x.x[0] * d.grad_dp[1];
+    const double ddp_dtheta = face * (-x.x[1] * d.grad_dp[0] + x.x[0] * d.grad_dp[1]);
     const double eps = 1e-7 * h;
     const double dcouette = (couette(h + eps) - couette(h - eps)) / (2 * eps);
     const double dpois =
