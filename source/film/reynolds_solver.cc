@@ -462,6 +462,25 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
     settings.mesh.check_memory(settings.polynomial_degree);
     if (film.wave_amplitude != 0)
       settings.mesh.check_resolves_waves(film.wave_number, settings.polynomial_degree);
+    // Surface features: the built-in mesh can put cell edges on the steps only if every period
+    // of the features gets the same cells, at least one per piece (annulus_mesh.cc).
+    const AnnulusMesh &m = settings.mesh;
+    if (film.features && m.align_with_features && m.mesh_file.empty())
+    {
+      const AnnulusMesh::Alignment a = film.features->mesh_alignment();
+      const unsigned int nt = m.circumferential_cells, n = a.periods;
+      const unsigned int pieces = a.theta_breaks.size();
+      if (pieces > 1 && (nt % n != 0 || nt / n < pieces))
+      {
+        std::ostringstream s;
+        s << "Discretization: Circumferential cells = " << nt
+          << " cannot put cell edges on the steps of " << n
+          << " surface features (it must be a multiple of " << n << " with at least " << pieces
+          << " cells per period, e.g. " << n * std::max(pieces, 8u)
+          << "); or set Align with features = false";
+        throw std::runtime_error(s.str());
+      }
+    }
   }
   flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);

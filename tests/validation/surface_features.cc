@@ -271,3 +271,53 @@ TEST(SurfaceFeatures, OnlyTheRelativeSpeedMatters)
     }
   }
 }
+
+// Bad feature input: one line each, naming the problem.
+TEST(SurfaceFeatures, BadInputIsRefusedInOneLine)
+{
+  const std::string pads = "subsection Geometry\n subsection Surface features\n"
+                           "  subsection Rayleigh pads\n   set Number = 12\n";
+  const std::string end = "  end\n end\nend\n";
+  for (const std::string &text :
+       {pads + "   set Step depth = 0\n" + end,
+        pads + "   set Step depth = 1e-6\n   set Pad angle = 0.6\n" + end,
+        pads + "   set Step depth = 1e-6\n   set Inner radius = 0.02\n" + end,
+        pads + "   set Step depth = 1e-6\n   set Feeding groove angle = 0.05\n" + end,
+        pads +
+            "   set Step depth = 1e-6\n  end\n  subsection Spiral grooves\n   set Number = 8\n"
+            "   set Depth = 1e-6\n" +
+            end,
+        std::string("subsection Geometry\n subsection Surface features\n  subsection Dimples\n"
+                    "   set Area density = 0.78\n   set Radius = 2e-3\n   set Depth = 1e-6\n") +
+            end})
+  {
+    std::string message;
+    try
+    {
+      parse_settings(text);
+    }
+    catch (std::runtime_error &e)
+    {
+      message = e.what();
+    }
+    std::cout << message << "\n";
+    EXPECT_NE(message.find("Surface features"), std::string::npos) << text;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  // a mesh that cannot put edges on the steps of 12 pads
+  RayleighPadSeal seal;
+  seal.pads = 12;
+  FilmSettings s = seal.settings();
+  s.mesh.circumferential_cells = 100;
+  ReynoldsSolver solver(s, MPI_COMM_WORLD);
+  try
+  {
+    solver.run();
+    ADD_FAILURE() << "not refused";
+  }
+  catch (std::runtime_error &e)
+  {
+    std::cout << e.what() << "\n";
+    EXPECT_NE(std::string(e.what()).find("Align with features"), std::string::npos);
+  }
+}
