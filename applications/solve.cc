@@ -5,6 +5,7 @@
 
 #include <sealfe/closed_form/narrow_seal.h>
 #include <sealfe/film/film_force_model.h>
+#include <sealfe/film/film_output.h>
 #include <sealfe/film/film_settings.h>
 #include <sealfe/film/film_summary.h>
 #include <sealfe/film/reynolds_solver.h>
@@ -35,7 +36,8 @@ void declare_parameters(ParameterHandler &prm)
   prm.leave_subsection();
   prm.enter_subsection("Output");
   prm.declare_entry("Write fields", "true", Patterns::Bool(),
-                    "Write pressure, film thickness and volume flux as VTU/PVD (FE model).");
+                    "Write the film's fields as VTU/PVD (FE model); which ones: Fields.");
+  FieldSelection::declare_parameters(prm);
   prm.leave_subsection();
   FilmSettings::declare_solver_parameters(prm); // Geometry, Operating conditions: the driver
   NarrowSealQuadrature::declare_parameters(prm);
@@ -93,10 +95,14 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
   prm.leave_subsection();
   prm.enter_subsection("Output");
   const bool write_fields = prm.get_bool("Write fields");
+  FieldSelection fields;
+  fields.parse_parameters(prm);
   prm.leave_subsection();
   const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
   if (model != to_string(FilmLevel::finite_element))
     return solve_closed_form(prm, settings, root);
+  if (write_fields)
+    fields.check_against(settings); // before the solve: a bad list costs nothing
 
   ReynoldsSolver solver(settings, comm);
   // Inputs are checked before any mesh file is read or output is touched.
@@ -108,7 +114,7 @@ nlohmann::json run(ParameterHandler &prm, const std::string &directory, MPI_Comm
       output::make_directory(directory);
     MPI_Barrier(comm);
     Timer t;
-    summary["fields"] = solver.write_output(directory);
+    summary["fields"] = write_film_output(solver, directory, fields);
     summary["stage_wall_time"]["output"] = t.wall_time();
   }
   if (root)

@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Scaling benchmark of the sealfe FE Reynolds solver (issue 13, "Scale and speed").
 
-    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,ranks,jfo] [--sealfe build/sealfe]
+    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,gmg,ranks,jfo] [--sealfe build/sealfe]
 
 Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps = 0.5), with
 `Error estimate = false`, `Write fields = false`. Runs
   1. amg: the CG + AMG ladder, degrees 1-3, aspects Ntheta/Nr = 1, 2, 16, 32, sizes 1e4 .. 1.1e6
      dofs (degree 2: to 4.3e6), `Linear solver = cg-amg`, one rank, recording dofs, CG
      iterations, process and stage times;
+  1b. gmg: the same ladder with `Linear solver = cg-gmg` (geometric multigrid on the levels of
+     the built-in annulus, source/film/film_multigrid.cc), degree 2 to 4.3e6 dofs;
   2. ranks: the full-film size ladder, degree 2, Ntheta/Nr = 16 (the 1.05e6-dof mesh 128 x 2048
      of issue 13 is on it), 4e3 .. 4.2e6 dofs, on 1 and 2 MPI ranks (`mpirun -np 2`), with the
      time exponent fitted from 1e5 dofs up;
@@ -108,7 +110,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sealfe", default=os.path.join(REPO, "build", "sealfe"))
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--parts", default="amg,ranks,jfo")
+    ap.add_argument("--parts", default="amg,gmg,ranks,jfo")
     ap.add_argument("--plot-only", action="store_true", help="redraw scaling.png from scaling.csv")
     a = ap.parse_args()
     parts = [] if a.plot_only else a.parts.split(",")
@@ -117,11 +119,11 @@ def main():
     path = os.path.join(HERE, "scaling.csv")
     if a.plot_only:
         rows = read_rows(path)
-    if "amg" in parts:
+    for study in [p for p in ("amg", "gmg") if p in parts]:
         for k in (1, 2, 3):
             max_dofs = 70000 if a.quick else (4_300_000 if k == 2 else 1_200_000)
             for aspect in (1, 2, 16, 32):
-                if aspect == 16 and k == 2 and "ranks" in parts:
+                if study == "amg" and aspect == 16 and k == 2 and "ranks" in parts:
                     continue  # measured by the rank ladder below
                 nr = 8
                 while True:
@@ -130,8 +132,8 @@ def main():
                     if dofs > max_dofs:
                         break
                     if dofs >= 10000:
-                        r = run(a.sealfe, work, k, nr, nt)
-                        r.update(study="amg", degree=k, aspect=aspect, nr=nr, nt=nt)
+                        r = run(a.sealfe, work, k, nr, nt, "cg-" + study)
+                        r.update(study=study, degree=k, aspect=aspect, nr=nr, nt=nt)
                         print(r, flush=True)
                         rows.append(r)
                     nr *= 2
@@ -177,7 +179,7 @@ def main():
     path = os.path.join(HERE, "scaling.csv")
     if not a.plot_only and os.path.exists(path):
         # keep the rows of the studies not re-run this time (e.g. --parts jfo)
-        ran = lambda study: ("jfo" if study.startswith("jfo") else "amg") in parts
+        ran = lambda study: study.split()[0] in parts
         rows = [r for r in read_rows(path) if not ran(r["study"])] + rows
     keys = sorted({k for r in rows for k in r})
     if not a.plot_only:
@@ -189,60 +191,61 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
-        colours = {1: "tab:blue", 2: "tab:orange", 16: "tab:green", 32: "tab:red"}
-        markers = {1: "s", 2: "o", 3: "^"}
-        for k in (1, 2, 3):
-            for aspect in (1, 2, 16, 32):
-                for ranks in (1, 2):
-                    sel = sorted([r for r in rows if r["study"] == "amg" and r["degree"] == k
-                                  and r["aspect"] == aspect and r.get("ranks") == ranks
-                                  and "dofs" in r], key=lambda r: r["dofs"])
-                    if not sel:
-                        continue
-                    lab = f"k={k}, Nθ/Nr={aspect}" + (", 2 ranks" if ranks == 2 else "")
-                    style = "--" if ranks == 2 else "-"
-                    ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
-                                 markers[k] + style, color=colours[aspect], label=lab, ms=4)
-                    if ranks == 1:
-                        ax[1].semilogx([r["dofs"] for r in sel], [r["cg_iterations"] for r in sel],
-                                       markers[k] + "-", color=colours[aspect], label=lab, ms=4)
-        # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
-        ref = [r for r in rows if r.get("nr") == 128 and r.get("aspect") == 16
-               and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
-        if ref:
-            x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
-            xs = [1e4, 5e6]
-            ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
-        # CG iterations against the aspect, at comparable sizes: the mesh of each degree and
-        # aspect nearest (in log) to 3e4, 2.5e5 and 1e6 dofs
-        for target, style in ((3e4, ":"), (2.5e5, "--"), (1e6, "-")):
+        fig, axes = plt.subplots(2, 3, figsize=(15, 9.6))
+        for ax, study in zip(axes, ("amg", "gmg")):
+            colours = {1: "tab:blue", 2: "tab:orange", 16: "tab:green", 32: "tab:red"}
+            markers = {1: "s", 2: "o", 3: "^"}
             for k in (1, 2, 3):
-                pts = []
                 for aspect in (1, 2, 16, 32):
-                    sel = [r for r in rows if r["study"] == "amg" and r["degree"] == k
-                           and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
-                    if sel:
-                        best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
-                        if abs(math.log(best["dofs"] / target)) < math.log(2.5):
-                            pts.append((aspect, best["cg_iterations"]))
-                if pts:
-                    ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
-                                   label=f"k={k}, ~{target:.0e} dofs", base=2)
-        ax[0].set_xlabel("dofs"); ax[0].set_ylabel("whole-process wall time [s]")
-        ax[0].set_title("full film, CG + AMG (one run each, shared machine)", fontsize=9)
-        ax[0].legend(fontsize=6, ncol=2)
-        ax[1].set_xlabel("dofs"); ax[1].set_ylabel("CG iterations (relative residual 1e-12)")
-        ax[1].set_title("CG iterations against size", fontsize=9)
-        ax[1].axhline(25, color="k", ls=":", lw=1)
-        ax[1].legend(fontsize=6, ncol=2)
-        ax[2].set_xlabel("cell aspect Nθ/Nr (cells around / cells across)")
-        ax[2].set_ylabel("CG iterations (relative residual 1e-12)")
-        ax[2].set_title("CG iterations against aspect", fontsize=9)
-        ax[2].axhline(25, color="k", ls=":", lw=1)
-        ax[2].legend(fontsize=7)
-        for x in ax[1:]:
-            x.set_ylim(bottom=0)
+                    for ranks in (1, 2):
+                        sel = sorted([r for r in rows if r["study"] == study and r["degree"] == k
+                                      and r["aspect"] == aspect and r.get("ranks") == ranks
+                                      and "dofs" in r], key=lambda r: r["dofs"])
+                        if not sel:
+                            continue
+                        lab = f"k={k}, Nθ/Nr={aspect}" + (", 2 ranks" if ranks == 2 else "")
+                        style = "--" if ranks == 2 else "-"
+                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                     markers[k] + style, color=colours[aspect], label=lab, ms=4)
+                        if ranks == 1:
+                            ax[1].semilogx([r["dofs"] for r in sel], [r["cg_iterations"] for r in sel],
+                                           markers[k] + "-", color=colours[aspect], label=lab, ms=4)
+            # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
+            ref = [r for r in rows if r["study"] == study and r.get("nr") == 128 and r.get("aspect") == 16
+                   and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
+            if ref:
+                x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
+                xs = [1e4, 5e6]
+                ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
+            # CG iterations against the aspect, at comparable sizes: the mesh of each degree and
+            # aspect nearest (in log) to 3e4, 2.5e5 and 1e6 dofs
+            for target, style in ((3e4, ":"), (2.5e5, "--"), (1e6, "-")):
+                for k in (1, 2, 3):
+                    pts = []
+                    for aspect in (1, 2, 16, 32):
+                        sel = [r for r in rows if r["study"] == study and r["degree"] == k
+                               and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
+                        if sel:
+                            best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
+                            if abs(math.log(best["dofs"] / target)) < math.log(2.5):
+                                pts.append((aspect, best["cg_iterations"]))
+                    if pts:
+                        ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
+                                       label=f"k={k}, ~{target:.0e} dofs", base=2)
+            ax[0].set_xlabel("dofs"); ax[0].set_ylabel("whole-process wall time [s]")
+            ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)", fontsize=9)
+            ax[0].legend(fontsize=6, ncol=2)
+            ax[1].set_xlabel("dofs"); ax[1].set_ylabel("CG iterations (relative residual 1e-12)")
+            ax[1].set_title(f"CG + {study.upper()}: iterations against size", fontsize=9)
+            ax[1].axhline(25, color="k", ls=":", lw=1)
+            ax[1].legend(fontsize=6, ncol=2)
+            ax[2].set_xlabel("cell aspect Nθ/Nr (cells around / cells across)")
+            ax[2].set_ylabel("CG iterations (relative residual 1e-12)")
+            ax[2].set_title(f"CG + {study.upper()}: iterations against aspect", fontsize=9)
+            ax[2].axhline(25, color="k", ls=":", lw=1)
+            ax[2].legend(fontsize=7)
+            for x in ax[1:]:
+                x.set_ylim(bottom=0)
         fig.tight_layout()
         fig.savefig(os.path.join(HERE, "scaling.png"), dpi=110)
     except ImportError:

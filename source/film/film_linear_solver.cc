@@ -30,9 +30,43 @@ const char *FilmLinearSolver::method_name() const
     return "direct";
   case Method::cg_amg:
     return "cg-amg";
+  case Method::cg_gmg:
+    return "cg-gmg";
   default:
     return "gmres-amg";
   }
+}
+
+FilmLinearSolver::Method FilmLinearSolver::choose(const FilmSettings::LinearSolver choice,
+                                                  const bool symmetric,
+                                                  const types::global_dof_index n,
+                                                  const bool multigrid_available)
+{
+  // CG needs a symmetric matrix: the cavitation Newton systems never get it, whatever the
+  // setting asks for.
+  // `auto` factorises the nonsymmetric Newton systems at every size: GMRES with ML AMG (NSSA or
+  // SA) diverged on the JFO Jacobian (33024 unknowns: residual 2e7 after 3302 iterations), whose
+  // columns mix pressure-flow (P A) and void-transport (G) couplings. The geometric multigrid's
+  // level operators are re-discretisations of the full film, so it preconditions only that
+  // (and its linearisation); a Newton Jacobian asked for with cg-gmg is factorised like `auto`.
+  using LS = FilmSettings::LinearSolver;
+  if (choice == LS::direct)
+    return Method::direct;
+  if (choice == LS::cg_amg)
+    return symmetric ? Method::cg_amg : Method::gmres_amg;
+  if (!symmetric)
+    return Method::direct;
+  if (choice == LS::cg_gmg)
+    return multigrid_available ? Method::cg_gmg : Method::cg_amg;
+  if (n < direct_solver_limit)
+    return Method::direct;
+  return multigrid_available ? Method::cg_gmg : Method::cg_amg;
+}
+
+void FilmLinearSolver::set_multigrid(const FilmMultigrid *mg, std::function<void()> prepare_levels)
+{
+  multigrid = mg;
+  prepare_multigrid = std::move(prepare_levels);
 }
 
 void FilmLinearSolver::clear()
@@ -42,6 +76,8 @@ void FilmLinearSolver::clear()
   amg.reset();
   matrix = nullptr;
   lagged = false;
+  multigrid = nullptr;
+  prepare_multigrid = nullptr;
 }
 
 void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
@@ -50,17 +86,7 @@ void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
                                const std::vector<double> &x, const std::vector<double> &y,
                                const bool allow_reuse, const bool deferred)
 {
-  // CG needs a symmetric matrix: the cavitation Newton systems never get it, whatever the
-  // setting asks for.
-  // `auto` factorises the nonsymmetric Newton systems at every size: GMRES with ML AMG (NSSA or
-  // SA) diverged on the JFO Jacobian (33024 unknowns: residual 2e7 after 3302 iterations), whose
-  // columns mix pressure-flow (P A) and void-transport (G) couplings.
-  const bool use_direct = choice == FilmSettings::LinearSolver::direct ||
-                          (choice == FilmSettings::LinearSolver::automatic &&
-                           (!symmetric_in || matrix_in.m() < direct_solver_limit));
-  const Method method = use_direct     ? Method::direct
-                        : symmetric_in ? Method::cg_amg
-                                       : Method::gmres_amg;
+  const Method method = choose(choice, symmetric_in, matrix_in.m(), multigrid != nullptr);
   // Only an AMG hierarchy is worth keeping: the Fischer-Burmeister Jacobians change at every
   // cavitated node between Newton steps, so an old KLU factorisation made GMRES fail its
   // iteration limit in 6 of 7 steps (measured), while an AMG hierarchy of a similar matrix stays
@@ -107,6 +133,11 @@ void FilmLinearSolver::build_preconditioner()
   }
   direct.clear();
   amg.reset();
+  if (current_method == Method::cg_gmg)
+  {
+    prepare_multigrid();
+    return;
+  }
   // Smoothed aggregation. The cells of the annulus are long and thin (a dam ~45 times narrower
   // than its circumference), so the matrix couples a node far more strongly to its radial
   // neighbours than to its circumferential ones. ML's default aggregation on the matrix does
@@ -144,7 +175,9 @@ unsigned int FilmLinearSolver::krylov_solve(const VectorType &rhs, VectorType &x
   SolverControl control(max_iterations, target, false, false);
   try
   {
-    if (current_method == Method::cg_amg && !lagged)
+    if (current_method == Method::cg_gmg)
+      SolverCG<VectorType>(control).solve(*matrix, x, rhs, *multigrid);
+    else if (current_method == Method::cg_amg && !lagged)
       SolverCG<VectorType>(control).solve(*matrix, x, rhs, *amg);
     else
     {

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace sealfe
 {
@@ -23,11 +25,13 @@ class FilmPostprocessor : public DataPostprocessor<2>
 {
 public:
   /// `void_fraction`: the nodal JFO void fraction, or nullptr (v = 0).
+  /// The flags say which of its fields to write.
   FilmPostprocessor(std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film,
                     const FiniteElement<2> &fe, const unsigned int n_subdivisions,
-                    const TrilinosWrappers::MPI::Vector *void_fraction, const bool rough,
-                    const bool contact)
-      : film(std::move(film)), void_fraction(void_fraction), rough(rough), contact(contact)
+                    const TrilinosWrappers::MPI::Vector *void_fraction, const bool thickness,
+                    const bool flux, const bool rough, const bool contact)
+      : film(std::move(film)), void_fraction(void_fraction), thickness(thickness), flux(flux),
+        rough(rough), contact(contact)
   {
     // DataOut evaluates on each cell the lattice (i/n, j/n), i fastest: the values of the shape
     // functions there interpolate the nodal void fraction to the output points
@@ -45,7 +49,7 @@ public:
                              std::vector<Vector<double>> &out) const override
   {
     std::vector<double> liquid(in.evaluation_points.size(), 1.0);
-    if (void_fraction != nullptr)
+    if (void_fraction != nullptr && flux)
     {
       AssertDimension(in.evaluation_points.size(), shape_values.size());
       const auto cell = in.template get_cell<2>();
@@ -60,11 +64,15 @@ public:
       // in a JFO cavity the pressure part vanishes (p = p_cav) and the Couette part carries the
       // liquid fraction: the flux stream tracers follow is the flux that is conserved
       const ReynoldsSolver::LocalFilm f = film(in.evaluation_points[q]);
-      const Tensor<1, 2> flux = -(f.K * in.solution_gradients[q]) + liquid[q] * f.c;
       unsigned int k = 0;
-      out[q](k++) = f.h;
-      out[q](k++) = flux[0];
-      out[q](k++) = flux[1];
+      if (thickness)
+        out[q](k++) = f.h;
+      if (flux)
+      {
+        const Tensor<1, 2> q_flux = -(f.K * in.solution_gradients[q]) + liquid[q] * f.c;
+        out[q](k++) = q_flux[0];
+        out[q](k++) = q_flux[1];
+      }
       if (rough)
       {
         out[q](k++) = f.h_T;
@@ -78,7 +86,11 @@ public:
   }
   std::vector<std::string> get_names() const override
   {
-    std::vector<std::string> names = {"film_thickness", "volume_flux", "volume_flux"};
+    std::vector<std::string> names;
+    if (thickness)
+      names.push_back("film_thickness");
+    if (flux)
+      names.insert(names.end(), {"volume_flux", "volume_flux"});
     if (rough)
       names.insert(names.end(), {"expected_gap", "pressure_flow_factor_r",
                                  "pressure_flow_factor_theta", "shear_flow_factor"});
@@ -91,18 +103,23 @@ public:
   {
     std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
         get_names().size(), DataComponentInterpretation::component_is_scalar);
-    kinds[1] = kinds[2] = DataComponentInterpretation::component_is_part_of_vector;
+    if (flux)
+      kinds[thickness ? 1 : 0] = kinds[thickness ? 2 : 1] =
+          DataComponentInterpretation::component_is_part_of_vector;
     return kinds;
   }
   UpdateFlags get_needed_update_flags() const override
   {
-    return update_values | update_gradients | update_quadrature_points;
+    return flux ? update_values | update_gradients | update_quadrature_points
+                : update_quadrature_points;
   }
+  /// Whether it writes anything at all.
+  bool empty() const { return !thickness && !flux && !rough && !contact; }
 
 private:
   std::function<ReynoldsSolver::LocalFilm(const Point<2> &)> film;
   const TrilinosWrappers::MPI::Vector *void_fraction;
-  const bool rough, contact;
+  const bool thickness, flux, rough, contact;
   std::vector<std::vector<double>> shape_values; ///< [output point][cell dof]
 };
 
@@ -125,28 +142,99 @@ void write_file(const std::string &name, const std::string &content)
 }
 } // namespace
 
-std::string write_film_fields(const ReynoldsSolver &s, const std::string &directory,
-                              const std::string &basename, const unsigned int counter)
+const char *const FieldSelection::names =
+    "pressure, film thickness, volume flux, flow factors, contact pressure, liquid fraction, "
+    "cavitated";
+
+void FieldSelection::declare_parameters(ParameterHandler &prm)
 {
-  // Only the fields that carry information for this model: the Patir & Cheng quantities with
-  // rough faces, the contact pressure with asperity contact, the liquid fraction with JFO and the
-  // cavity indicator with a cavitation model (elsewhere they are 1, 0 or h everywhere, and
-  // each field costs about a tenth of the write at 1e6 dofs). The owning rank is cell data (one
-  // number per cell), added after the write.
-  FilmPostprocessor postprocessor(
-      [&s](const Point<2> &x) { return s.local_film(x); }, *s.fe, s.polynomial_degree,
-      s.cavitation.model == Cavitation::jfo ? &s.locally_relevant_void : nullptr,
-      !s.flow_factors.is_smooth(), s.contact.enabled());
-  DataOut<2> data_out;
-  data_out.attach_dof_handler(s.dof_handler);
-  data_out.add_data_vector(s.locally_relevant_solution, "pressure");
-  data_out.add_data_vector(s.locally_relevant_solution, postprocessor);
-  // Liquid fraction s = 1 - v (nodal, so exact at the nodes) and an indicator of the cavitated
-  // region (1 where p <= p_cav or s < 1).
+  prm.declare_entry("Fields", "all", Patterns::Anything(),
+                    std::string("Fields in the VTU: all (every field the film model has) or a "
+                                "comma-separated list of ") +
+                        names +
+                        ". flow factors needs rough faces, contact pressure asperity contact, "
+                        "liquid fraction the jfo model, cavitated a cavitation model. Each field "
+                        "is a share of the write, which at 1e6 dofs takes seconds.");
+}
+
+void FieldSelection::parse_parameters(ParameterHandler &prm)
+{
+  const std::string text = prm.get("Fields");
+  *this = FieldSelection();
+  if (Utilities::trim(text) == "all")
+    return;
+  everything = false;
+  pressure = film_thickness = volume_flux = flow_factors = contact_pressure = liquid_fraction =
+      cavitated = false;
+  const std::vector<std::pair<std::string, bool *>> known = {
+      {"pressure", &pressure},
+      {"film thickness", &film_thickness},
+      {"volume flux", &volume_flux},
+      {"flow factors", &flow_factors},
+      {"contact pressure", &contact_pressure},
+      {"liquid fraction", &liquid_fraction},
+      {"cavitated", &cavitated}};
+  for (const std::string &item : Utilities::split_string_list(text, ','))
+  {
+    bool found = false;
+    for (const auto &[name, flag] : known)
+      if (item == name)
+        found = *flag = true;
+    if (!found)
+      throw std::runtime_error("Output/Fields: unknown field '" + item + "' (all, or a list of " +
+                               names + ")");
+  }
+  if (Utilities::split_string_list(text, ',').empty())
+    throw std::runtime_error("Output/Fields is empty (all, or a list of " + std::string(names) +
+                             "); to write no fields set Write fields = false");
+}
+
+void FieldSelection::check_against(const FilmSettings &settings) const
+{
+  if (everything)
+    return;
+  auto refuse = [](const std::string &field, const std::string &needs)
+  { throw std::runtime_error("Output/Fields: " + field + " needs " + needs); };
+  if (flow_factors && settings.flow_factors.is_smooth())
+    refuse("flow factors", "rough faces (Roughness/Model)");
+  if (contact_pressure && !settings.contact.enabled())
+    refuse("contact pressure", "an asperity contact model (Contact/Model)");
+  if (liquid_fraction && settings.cavitation.model != Cavitation::jfo)
+    refuse("liquid fraction", "Cavitation/Model = jfo");
+  if (cavitated && settings.cavitation.model == Cavitation::none)
+    refuse("cavitated", "a cavitation model (Cavitation/Model)");
+}
+
+std::string write_film_fields(const ReynoldsSolver &s, const std::string &directory,
+                              const std::string &basename, const unsigned int counter,
+                              const FieldSelection &fields)
+{
+  // Only the fields that carry information for this model (and, with an Output/Fields list,
+  // that were asked for): the Patir & Cheng quantities with rough faces, the contact pressure
+  // with asperity contact, the liquid fraction with JFO and the cavity indicator with a
+  // cavitation model (elsewhere they are 1, 0 or h everywhere). The owning rank is cell data
+  // (one number per cell), added after the write.
+  const bool all = fields.everything;
   const bool jfo = s.cavitation.model == Cavitation::jfo;
   const bool cavitating = s.cavitation.model != Cavitation::none;
+  const bool write_flux = all || fields.volume_flux;
+  FilmPostprocessor postprocessor(
+      [&s](const Point<2> &x) { return s.local_film(x); }, *s.fe, s.polynomial_degree,
+      jfo && write_flux ? &s.locally_relevant_void : nullptr, all || fields.film_thickness,
+      write_flux, !s.flow_factors.is_smooth() && (all || fields.flow_factors),
+      s.contact.enabled() && (all || fields.contact_pressure));
+  DataOut<2> data_out;
+  data_out.attach_dof_handler(s.dof_handler);
+  if (all || fields.pressure)
+    data_out.add_data_vector(s.locally_relevant_solution, "pressure");
+  if (!postprocessor.empty())
+    data_out.add_data_vector(s.locally_relevant_solution, postprocessor);
+  // Liquid fraction s = 1 - v (nodal, so exact at the nodes) and an indicator of the cavitated
+  // region (1 where p <= p_cav or s < 1).
+  const bool write_liquid = jfo && (all || fields.liquid_fraction);
+  const bool write_cavitated = cavitating && (all || fields.cavitated);
   TrilinosWrappers::MPI::Vector liquid_ghosted, cavitated_ghosted;
-  if (cavitating)
+  if (write_liquid || write_cavitated)
   {
     TrilinosWrappers::MPI::Vector liquid(s.locally_owned_dofs, s.mpi_communicator),
         cavitated(s.locally_owned_dofs, s.mpi_communicator);
@@ -164,9 +252,10 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
     cavitated_ghosted.reinit(s.locally_owned_dofs, s.locally_relevant_dofs, s.mpi_communicator);
     liquid_ghosted = liquid;
     cavitated_ghosted = cavitated;
-    if (jfo)
+    if (write_liquid)
       data_out.add_data_vector(liquid_ghosted, "liquid_fraction");
-    data_out.add_data_vector(cavitated_ghosted, "cavitated");
+    if (write_cavitated)
+      data_out.add_data_vector(cavitated_ghosted, "cavitated");
   }
   // one Lagrange cell of the element's degree per cell (VTK_LAGRANGE_QUADRILATERAL): ParaView
   // shows the curved element and its degree instead of k^2 straight sub-quads; zlib at its
@@ -209,9 +298,10 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   return stem + ".pvtu";
 }
 
-std::string write_film_output(const ReynoldsSolver &s, const std::string &directory)
+std::string write_film_output(const ReynoldsSolver &s, const std::string &directory,
+                              const FieldSelection &fields)
 {
-  const std::string pvtu = write_film_fields(s, directory, "solution", 0);
+  const std::string pvtu = write_film_fields(s, directory, "solution", 0, fields);
   if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
   {
     std::ofstream pvd(directory + "/solution.pvd");

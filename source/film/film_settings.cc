@@ -25,9 +25,11 @@ void FilmSettings::declare_solver_parameters(ParameterHandler &prm)
   prm.enter_subsection("Discretization");
   prm.declare_entry("Polynomial degree", "2", Patterns::Integer(1, 6),
                     "Degree k of the continuous Lagrange elements (and of the curved mapping).");
-  prm.declare_entry("Linear solver", "auto", Patterns::Selection("auto|direct|cg-amg"),
-                    "auto: sparse direct (KLU) below 150000 unknowns, CG with algebraic "
-                    "multigrid above; direct or cg-amg force one.");
+  prm.declare_entry("Linear solver", "auto", Patterns::Selection("auto|direct|cg-amg|cg-gmg"),
+                    "auto: sparse direct (KLU) below 150000 unknowns; above, CG with geometric "
+                    "multigrid on the levels of the built-in mesh (cg-gmg), or with algebraic "
+                    "multigrid (cg-amg) on a mesh file; direct, cg-amg or cg-gmg force one "
+                    "(cavitation Newton systems: direct unless cg-amg).");
   prm.declare_entry("Solver tolerance", "1e-12", Patterns::Double(0),
                     "Relative residual tolerance of the iterative solver (the equation is scaled "
                     "by 12 mu / C0^3, so this is relative to the pressure load).");
@@ -56,6 +58,7 @@ void FilmSettings::parse_solver_parameters(ParameterHandler &prm)
   const std::string s = prm.get("Linear solver");
   linear_solver = (s == "direct")   ? LinearSolver::direct
                   : (s == "cg-amg") ? LinearSolver::cg_amg
+                  : (s == "cg-gmg") ? LinearSolver::cg_gmg
                                     : LinearSolver::automatic;
   solver_tolerance = prm.get_double("Solver tolerance");
   estimate_error = prm.get_bool("Error estimate");

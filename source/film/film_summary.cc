@@ -264,6 +264,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   const FilmLinearSolver &linear = solver.linear_solver_statistics();
   summary["linear_solver"] = {
       {"method", linear.method_name()},
+      {"direct_package", linear.direct_package()},
       {"factorizations", linear.statistics().factorizations},
       {"solves", linear.statistics().solves},
       {"krylov_iterations", linear.statistics().krylov_iterations},

@@ -39,7 +39,10 @@ using namespace dealii;
 ReynoldsSolver::ReynoldsSolver(MPI_Comm comm) : ReynoldsSolver(FilmSettings(), comm) {}
 
 ReynoldsSolver::ReynoldsSolver(const FilmSettings &settings_in, MPI_Comm comm)
-    : settings(settings_in), mpi_communicator(comm), triangulation(comm),
+    : settings(settings_in), mpi_communicator(comm),
+      // the levels of the globally refined annulus are the geometric multigrid's hierarchy
+      triangulation(comm, Triangulation<2>::limit_level_difference_at_vertices,
+                    parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy),
       dof_handler(triangulation), timer(std::cerr, TimerOutput::never, TimerOutput::wall_times)
 {
 }
@@ -70,6 +73,7 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   dof_handler.clear();
   triangulation.clear();
   linear_system_solver.clear();
+  multigrid.clear();
   amg_support_x.clear();
   amg_support_y.clear();
   // Grading from C0 and coning only, so that perturbing z or the tilts (finite-difference
@@ -89,6 +93,12 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   cached->initialize(MappingQ<2>(polynomial_degree), triangulation);
   mapping = std::move(cached);
   dof_handler.distribute_dofs(*fe);
+  // The geometric multigrid's line smoother wants the dofs numbered by radial lines.
+  if (FilmLinearSolver::choose(linear_solver, true, dof_handler.n_dofs(),
+                               mesh_parameters.mesh_file.empty() &&
+                                   FilmMultigrid::has_hierarchy(dof_handler)) ==
+      FilmLinearSolver::Method::cg_gmg)
+    FilmMultigrid::number_by_radial_lines(dof_handler, *mapping);
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
@@ -181,11 +191,32 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
                                const bool deferred)
 {
   TimerOutput::Scope t(timer, "linear solver setup");
+  // Geometric multigrid on the levels of the built-in annulus (a mesh file has no hierarchy):
+  // set up once per mesh, its level operators rebuilt for each full-film matrix.
+  const bool hierarchy =
+      mesh_parameters.mesh_file.empty() && symmetric && FilmMultigrid::has_hierarchy(dof_handler);
+  const auto method =
+      FilmLinearSolver::choose(linear_solver, symmetric, dof_handler.n_dofs(), hierarchy);
+  if (method == FilmLinearSolver::Method::cg_gmg)
+  {
+    if (!multigrid.is_setup())
+      multigrid.setup(dof_handler, *mapping,
+                      {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
+    linear_system_solver.set_multigrid(
+        &multigrid,
+        [this]()
+        {
+          multigrid.prepare(
+              system_matrix, [this](const Point<2> &x) { return equation_scale * local_film(x).K; },
+              polynomial_degree + 2, multigrid_parameters);
+        });
+  }
+  else
+    linear_system_solver.set_multigrid(nullptr, {});
   // The AMG aggregates on the dof support points (film_linear_solver.h): built once per mesh,
   // and only for the sizes that use AMG.
-  const bool may_use_amg = linear_solver == LinearSolver::cg_amg ||
-                           (linear_solver == LinearSolver::automatic &&
-                            dof_handler.n_dofs() >= FilmLinearSolver::direct_solver_limit);
+  const bool may_use_amg =
+      method == FilmLinearSolver::Method::cg_amg || method == FilmLinearSolver::Method::gmres_amg;
   if (may_use_amg && amg_support_x.empty())
   {
     // The support points of the locally owned dofs, in the order of locally_owned_dofs (the

@@ -5,6 +5,7 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_LinearProblem.h>
 #include <Teuchos_ParameterList.hpp>
@@ -37,21 +38,32 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     clear();
     problem = std::make_unique<Epetra_LinearProblem>();
     problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
+    // KLU (left-looking, no dense kernels) is quickest on small systems; above a few 1e4
+    // unknowns MUMPS's multifrontal factorisation with dense BLAS-3 fronts is 2-7x faster on these
+    // 2D meshes (doc/performance.md "Direct solver"). AMD ordering: measured quicker than METIS
+    // nested dissection and MUMPS's automatic choice at 2.6e5 and 1e6 unknowns.
+    package = A.NumGlobalRows64() < multifrontal_limit ? "KLU" : "MUMPS";
     Amesos factory;
-    solver.reset(factory.Create("Amesos_Klu", *problem));
+    solver.reset(
+        factory.Create(package == std::string("KLU") ? "Amesos_Klu" : "Amesos_Mumps", *problem));
     if (!solver)
-      throw std::runtime_error("Reynolds solver: Amesos KLU is not available");
+      throw std::runtime_error(std::string("Reynolds solver: Amesos ") + package +
+                               " is not available");
     Teuchos::ParameterList parameters;
     solver->SetParameters(parameters);
+    if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
+      mumps->SetICNTL(7, 0); // AMD
     if (solver->SymbolicFactorization() != 0)
-      throw std::runtime_error("Reynolds solver: KLU symbolic factorisation failed");
+      throw std::runtime_error(std::string("Reynolds solver: ") + package +
+                               " symbolic factorisation failed");
     pattern_owner = &A;
     pattern_entries = A.NumGlobalNonzeros64();
   }
   else
     ++reused_symbolic;
   if (solver->NumericFactorization() != 0)
-    throw std::runtime_error("Reynolds solver: KLU factorisation failed (singular matrix)");
+    throw std::runtime_error(std::string("Reynolds solver: ") + package +
+                             " factorisation failed (singular matrix)");
 }
 
 void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
@@ -61,7 +73,7 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
   problem->SetRHS(const_cast<Epetra_MultiVector *>(
       static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
   if (solver->Solve() != 0)
-    throw std::runtime_error("Reynolds solver: KLU solve failed");
+    throw std::runtime_error(std::string("Reynolds solver: ") + package + " solve failed");
 }
 
 std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &matrix,

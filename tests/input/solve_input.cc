@@ -202,3 +202,26 @@ TEST(SolveInput, MeshBeyondTheMachinesMemory)
                    "GB of memory");
   }
 }
+
+// Output/Fields: an unknown name, and a field the model does not have, are refused before the
+// solve with the name of the field
+TEST(SolveInput, FieldListNamesTheBadField)
+{
+  {
+    const fs::path d = work_dir();
+    expect_refused(d, run_case(d, "subsection Output\n  set Fields = pressure, presure\nend\n"),
+                   "unknown field 'presure'");
+  }
+  {
+    const fs::path d = work_dir();
+    expect_refused(d,
+                   run_case(d, "subsection Output\n  set Fields = pressure, liquid fraction\n"
+                               "end\n"),
+                   "liquid fraction needs Cavitation/Model = jfo");
+  }
+  {
+    const fs::path d = work_dir();
+    expect_refused(d, run_case(d, "subsection Output\n  set Fields = flow factors\nend\n"),
+                   "flow factors needs rough faces");
+  }
+}

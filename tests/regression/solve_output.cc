@@ -34,6 +34,19 @@ fs::path run_default(const std::string &name)
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   return dir / "out";
 }
+/// The (single) VTU piece in `out`, read.
+vtkSmartPointer<vtkXMLUnstructuredGridReader> read_vtu(const fs::path &out)
+{
+  fs::path vtu;
+  for (const auto &e : fs::directory_iterator(out))
+    if (e.path().extension() == ".vtu")
+      vtu = e.path();
+  EXPECT_FALSE(vtu.empty());
+  auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+  reader->SetFileName(vtu.c_str());
+  reader->Update();
+  return reader;
+}
 } // namespace
 
 TEST(SolveOutput, SummaryKeysAndDefaultSeal)
@@ -75,14 +88,7 @@ TEST(SolveOutput, SummaryKeysAndDefaultSeal)
 TEST(SolveOutput, VtuHasFieldsOnCurvedGeometry)
 {
   const fs::path out = run_default("vtu");
-  fs::path vtu;
-  for (const auto &e : fs::directory_iterator(out))
-    if (e.path().extension() == ".vtu")
-      vtu = e.path();
-  ASSERT_FALSE(vtu.empty());
-  auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
-  reader->SetFileName(vtu.c_str());
-  reader->Update();
+  vtkSmartPointer<vtkXMLUnstructuredGridReader> reader = read_vtu(out);
   vtkUnstructuredGrid *grid = reader->GetOutput();
   ASSERT_GT(grid->GetNumberOfPoints(), 0);
   // one Lagrange cell of the element's degree (2 by default: 9 points) per finite element
@@ -256,4 +262,29 @@ TEST(SolveOutput, RoundOffMomentsPrintedAsZeroAndTimings)
   EXPECT_NE(tilted.find("discretisation"), std::string::npos) << tilted;
   EXPECT_EQ(tilted.find("TimerOutput"), std::string::npos);
   EXPECT_EQ(tilted.find("| run solve "), std::string::npos) << tilted;
+}
+
+// Output/Fields = a list: the VTU carries those point arrays and no other (plus the rank cell
+// array); the pressure is the same field as in a full write.
+TEST(SolveOutput, FieldListWritesOnlyThoseFields)
+{
+  const fs::path dir = fs::temp_directory_path() / "sealfe_regression_field_list";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "case.prm") << "set Output directory = " << (dir / "out").string() << "\n"
+                                  << "subsection Output\n  set Fields = pressure, film thickness\n"
+                                  << "end\n";
+  const std::string cmd = std::string(SEALFE_BINARY) + " solve " + (dir / "case.prm").string() +
+                          " > " + (dir / "log").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  vtkSmartPointer<vtkXMLUnstructuredGridReader> reader = read_vtu(dir / "out");
+  vtkPointData *points = reader->GetOutput()->GetPointData();
+  EXPECT_EQ(points->GetNumberOfArrays(), 2);
+  EXPECT_NE(points->GetArray("pressure"), nullptr);
+  EXPECT_NE(points->GetArray("film_thickness"), nullptr);
+  EXPECT_EQ(points->GetArray("volume_flux"), nullptr);
+  EXPECT_NE(reader->GetOutput()->GetCellData()->GetArray("rank"), nullptr);
+  // default seal: the pressure lies between the sealed pressures 0 and 4e5 Pa
+  EXPECT_GE(points->GetArray("pressure")->GetRange()[0], -1e-6);
+  EXPECT_LE(points->GetArray("pressure")->GetRange()[1], 4e5 + 1e-6);
 }

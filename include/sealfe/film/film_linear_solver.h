@@ -3,6 +3,7 @@
 // back-end: sparse direct (Amesos KLU) below a size, Krylov + ML algebraic multigrid above.
 #pragma once
 
+#include <sealfe/film/film_multigrid.h>
 #include <sealfe/film/film_settings.h>
 #include <sealfe/film/sparse_direct.h>
 
@@ -12,14 +13,17 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace sealfe
 {
-/// Solves A x = b for the matrices of ReynoldsSolver. Three methods:
+/// Solves A x = b for the matrices of ReynoldsSolver. Four methods:
 ///  - direct: KLU factorisation;
+///  - cg-gmg (symmetric A on the built-in annulus): CG + geometric multigrid on the levels of the
+///    mesh (film_multigrid.h), whose level operators the owner rebuilds for each matrix;
 ///  - cg-amg (symmetric A: full film, linearised full film): CG + smoothed-aggregation AMG whose
 ///    aggregates are built on the distance Laplacian of the dof support points (ML "aux"
 ///    aggregation), so they follow the short direction of the long, thin cells of the annulus;
@@ -37,7 +41,8 @@ public:
   {
     direct,
     cg_amg,
-    gmres_amg
+    gmres_amg,
+    cg_gmg
   };
   /// Work counted since construction (summary.json: linear_solver).
   struct Statistics
@@ -57,6 +62,15 @@ public:
   /// gmres-amg falls back to KLU after this many iterations.
   static constexpr unsigned int gmres_iteration_limit = 200;
 
+  /// The method `choice` gives for a matrix of `n` unknowns: `auto` factorises below
+  /// direct_solver_limit and every nonsymmetric matrix; above it, symmetric systems get cg-gmg
+  /// where the mesh has a level hierarchy (`multigrid_available`), cg-amg elsewhere.
+  static Method choose(FilmSettings::LinearSolver choice, bool symmetric,
+                       dealii::types::global_dof_index n, bool multigrid_available);
+  /// The geometric multigrid of the mesh and the function that rebuilds its level operators for
+  /// the prepared matrix (called where a factorisation would be). Null: no hierarchy.
+  void set_multigrid(const FilmMultigrid *multigrid, std::function<void()> prepare_levels);
+
   /// Prepare to solve with `matrix` (kept by reference until the next prepare()). `support_x`,
   /// `support_y`: coordinates of the locally owned dofs (only used by the AMG methods).
   /// `allow_reuse`: the matrix is the next of a sequence with the same pattern (Newton).
@@ -75,6 +89,8 @@ public:
 
   Method method() const { return current_method; }
   const char *method_name() const;
+  /// The sparse direct package of the last factorisation, "KLU" or "MUMPS" ("" if none).
+  const char *direct_package() const { return direct.package_name(); }
   const Statistics &statistics() const { return stats; }
   void reset_statistics() { stats = Statistics(); }
 
@@ -94,6 +110,8 @@ private:
   const std::vector<double> *support_x = nullptr, *support_y = nullptr;
   SparseDirect direct;
   std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+  const FilmMultigrid *multigrid = nullptr;
+  std::function<void()> prepare_multigrid;
   Statistics stats;
 };
 

@@ -3,19 +3,46 @@
 // cells of the element's degree, and the owning MPI rank as cell data; VTU + PVTU + PVD.
 #pragma once
 
+#include <sealfe/film/film_settings.h>
+
+#include <deal.II/base/parameter_handler.h>
+
 #include <string>
 
 namespace sealfe
 {
 class ReynoldsSolver;
 
+/// Which fields the VTU carries (`Output/Fields`): "all" writes every field the film model has;
+/// a list writes only those (each field is a share of the write, which at 1e6 dofs is seconds).
+struct FieldSelection
+{
+  /// Declares "Fields" in the current subsection.
+  static void declare_parameters(dealii::ParameterHandler &prm);
+  /// Reads "Fields" in the current subsection; one-line error for an unknown name.
+  void parse_parameters(dealii::ParameterHandler &prm);
+  /// Throws std::runtime_error naming a requested field that the model of `settings` does not
+  /// have (liquid fraction without JFO, flow factors with smooth faces, ...). Call it before the
+  /// solve so that a bad list costs nothing.
+  void check_against(const FilmSettings &settings) const;
+
+  /// The names a user may list.
+  static const char *const names;
+
+  bool everything = true; // "all": the model's fields; the flags below are then ignored
+  bool pressure = true, film_thickness = true, volume_flux = true, flow_factors = true,
+       contact_pressure = true, liquid_fraction = true, cavitated = true;
+};
+
 /// Write the fields of the last run() of `solver` into `directory` (which must exist); returns
 /// the PVD file name, "solution.pvd". Collective over the solver's communicator.
-std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory);
+std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory,
+                              const FieldSelection &fields = FieldSelection());
 
 /// The same fields as `<basename>_<counter>.pvtu` (+ its VTU pieces) without a PVD, for a time
 /// series whose PVD the caller writes; returns the PVTU file name.
 std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
-                              const std::string &basename, unsigned int counter);
+                              const std::string &basename, unsigned int counter,
+                              const FieldSelection &fields = FieldSelection());
 
 } // namespace sealfe

@@ -27,7 +27,8 @@ struct FilmSettings
   {
     automatic,
     direct,
-    cg_amg
+    cg_amg,
+    cg_gmg
   };
 
   /// Every subsection above.

@@ -2,6 +2,7 @@
 // ReynoldsSolver's discretisation, by Fischer-Burmeister-Newton-Schur with active-set polishing.
 #pragma once
 
+#include <deal.II/base/point.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
@@ -39,6 +40,12 @@ private:
   /// Start values from the mesh-sequencing solver (a coarse ReynoldsSolver with a copy of the
   /// settings); false if it fails or its mesh does not cover this one.
   bool coarse_start();
+  /// The coarse level's nodal pressure and void fraction at `points` when both meshes are the
+  /// built-in polar grid on one rank: cells found by (r, theta), no point search. Returns false
+  /// (and leaves the outputs undefined) for any other mesh.
+  bool values_on_polar_grid(const std::vector<dealii::Point<2>> &points,
+                            std::vector<double> &pressure,
+                            std::vector<double> &void_fraction) const;
   /// Largest |phi(a_j, v_j)| over the unconstrained dofs.
   double complementarity(const VectorType &a, const VectorType &v) const;
   /// Newton direction (da, dv) of the current Jacobian: factorise, solve, recover.

@@ -6,6 +6,7 @@
 
 #include <sealfe/film/film_linear_solver.h>
 #include <sealfe/film/film_loads.h>
+#include <sealfe/film/film_output.h>
 #include <sealfe/film/film_settings.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -165,9 +166,11 @@ private:
   friend class ReynoldsCavitationSolver;
   friend class JFOSolver;
   friend class LoadIntegrator;
-  friend std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory);
+  friend std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory,
+                                       const FieldSelection &fields);
   friend std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
-                                       const std::string &basename, unsigned int counter);
+                                       const std::string &basename, unsigned int counter,
+                                       const FieldSelection &fields);
 
   void setup_system(const unsigned int coarsening);
   void setup_constraints();
@@ -218,7 +221,13 @@ private:
   /// solver count their work in it.
   mutable FilmLinearSolver linear_system_solver;
   std::vector<double> amg_support_x, amg_support_y; // owned dofs' support points (AMG)
+  /// Geometric multigrid on the mesh levels (cg-gmg); its smoother (benchmarks change it).
+  FilmMultigrid multigrid;
 
+public:
+  FilmMultigrid::Parameters multigrid_parameters;
+
+private:
   double equation_scale = 1; // 12 mu / C0^3
 
   // Zero-Dirichlet constraints of corrections and perturbations (built in setup_system).

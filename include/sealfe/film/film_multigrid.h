@@ -1,0 +1,75 @@
+// FilmMultigrid: a geometric multigrid V-cycle (matrix-based, Trilinos matrices) for the symmetric
+// film systems on the built-in annulus, whose mesh is a hierarchy of globally refined levels.
+#pragma once
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <functional>
+#include <memory>
+
+namespace sealfe
+{
+/// Preconditioner for A p = b, A_ij = int K grad phi_j . grad phi_i with zero Dirichlet rows on
+/// both circles (the full film, its linearisation, rough faces). One V-cycle: the level matrices
+/// are re-discretisations of the same operator on the coarser levels of the mesh (K evaluated at
+/// the level cells' quadrature points), Chebyshev smoothing around the point-Jacobi diagonal on
+/// every level, KLU on the coarsest level, prolongation by the finite-element embedding
+/// (MGTransferPrebuilt). The finest level is the system matrix itself when the level and active
+/// numberings coincide (always, so far, on a globally refined mesh; else it is assembled too).
+class FilmMultigrid
+{
+public:
+  using VectorType = dealii::TrilinosWrappers::MPI::Vector;
+  /// The (scaled) pressure-flow tensor K at a point of the dam.
+  using Coefficient = std::function<dealii::Tensor<2, 2>(const dealii::Point<2> &)>;
+
+  /// Chebyshev degree of the smoother (pre- and post-smoothing each) and the fraction of the
+  /// spectrum it damps ([lambda_max / range, lambda_max]).
+  struct Parameters
+  {
+    unsigned int smoother_degree = 4;
+    double smoothing_range = 20;
+  };
+
+  FilmMultigrid();
+  ~FilmMultigrid();
+
+  /// Number the (active) dofs by radial lines: by angle, then radius, within each rank's set.
+  /// The multigrid numbers its levels the same way, so that the finest level is the system
+  /// matrix and the smoother's line blocks are contiguous.
+  static void number_by_radial_lines(dealii::DoFHandler<2> &dof_handler,
+                                     const dealii::Mapping<2> &mapping);
+
+  /// Whether `dof_handler`'s mesh has a level hierarchy worth a multigrid (at least 2 levels).
+  static bool has_hierarchy(const dealii::DoFHandler<2> &dof_handler);
+
+  /// Once per mesh: level dofs (distributes them), zero-Dirichlet level constraints on the two
+  /// boundary ids, level sparsity, transfer.
+  void setup(dealii::DoFHandler<2> &dof_handler, const dealii::Mapping<2> &mapping,
+             const std::vector<dealii::types::boundary_id> &dirichlet_ids);
+  bool is_setup() const { return dof_handler != nullptr; }
+  void clear();
+
+  /// For each new fine matrix: assemble the coarser level matrices with `K` and the Gauss rule of
+  /// `n_gauss` points per direction, estimate the smoothers' spectra, factorise the coarsest.
+  void prepare(const dealii::TrilinosWrappers::SparseMatrix &fine, const Coefficient &K,
+               unsigned int n_gauss, const Parameters &parameters);
+
+  /// dst = one V-cycle applied to src (a symmetric positive definite operator).
+  void vmult(VectorType &dst, const VectorType &src) const;
+
+  unsigned int n_levels() const;
+
+private:
+  struct Data;
+  std::unique_ptr<Data> data;
+  dealii::DoFHandler<2> *dof_handler = nullptr;
+  const dealii::Mapping<2> *mapping = nullptr;
+};
+
+} // namespace sealfe
