@@ -134,6 +134,9 @@ NarrowSealModel::NarrowSealModel(const FilmThickness &film, const OperatingCondi
 {
   film_.validate();
   conditions_.validate();
+  if (film_.features)
+    throw std::runtime_error("Film model/Model = closed form: surface features (Geometry/Surface "
+                             "features) need Film model/Model = finite element");
   if (!std::isfinite(cavitation_pressure))
     throw std::runtime_error("Narrow seal: the cavitation pressure is not a finite number");
   if (cavitation_ == Cavitation::reynolds || cavitation_ == Cavitation::jfo)

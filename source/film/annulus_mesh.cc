@@ -34,6 +34,11 @@ void AnnulusMesh::declare_parameters(ParameterHandler &prm)
                     "Optional gmsh .msh file of the annulus (replaces the built-in mesh). Its "
                     "boundary must be the two circles r = ri and r = ro of the Geometry section; "
                     "the boundary is classified by radius, physical tags are not needed.");
+  prm.declare_entry("Align with features", "true", Patterns::Bool(),
+                    "Put cell edges of the built-in mesh on the steps of surface features "
+                    "(pads: theta and r lines; spiral grooves: the mesh lines follow the spirals; "
+                    "dimples: the band edges) when Circumferential cells is a multiple of their "
+                    "number. false: the plain polar grid (for convergence comparisons).");
   prm.leave_subsection();
 }
 
@@ -45,6 +50,7 @@ void AnnulusMesh::parse_parameters(ParameterHandler &prm)
   global_refinements = prm.get_integer("Global refinements");
   mesh_file = prm.get("Mesh file");
   radial_grading = prm.get_bool("Radial grading");
+  align_with_features = prm.get_bool("Align with features");
   prm.leave_subsection();
 }
 
@@ -100,9 +106,131 @@ bool AnnulusMesh::can_coarsen(const unsigned int coarsening) const
   return radial_cells % f == 0 && circumferential_cells % f == 0 && circumferential_cells / f >= 3;
 }
 
+double AnnulusMesh::Alignment::shift(const double r) const
+{
+  if (spiral_cot == 0)
+    return 0;
+  return spiral_cot * std::log(std::min(std::max(r, spiral_r0), spiral_r1) / spiral_r0);
+}
+
+namespace
+{
+/// Share n cells among pieces of the given lengths (summing to 1) in proportion, at least one
+/// each (largest remainders); empty if n is smaller than the number of pieces.
+std::vector<unsigned int> share_cells(const unsigned int n, const std::vector<double> &lengths)
+{
+  const std::size_t m = lengths.size();
+  if (n < m)
+    return {};
+  std::vector<unsigned int> count(m);
+  std::vector<double> rest(m);
+  unsigned int used = 0;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const double want = n * lengths[k];
+    count[k] = std::max(1u, static_cast<unsigned int>(std::floor(want)));
+    rest[k] = want - count[k];
+    used += count[k];
+  }
+  while (used < n)
+  {
+    const std::size_t k = std::max_element(rest.begin(), rest.end()) - rest.begin();
+    ++count[k];
+    rest[k] -= 1;
+    ++used;
+  }
+  while (used > n)
+  {
+    std::size_t best = m;
+    for (std::size_t k = 0; k < m; ++k)
+      if (count[k] > 1 && (best == m || rest[k] < rest[best]))
+        best = k;
+    if (best == m)
+      return {};
+    --count[best];
+    rest[best] += 1;
+    --used;
+  }
+  return count;
+}
+} // namespace
+
+std::vector<double> AnnulusMesh::angular_nodes(const unsigned int nt) const
+{
+  std::vector<double> nodes(nt + 1);
+  for (unsigned int j = 0; j <= nt; ++j)
+    nodes[j] = 2 * M_PI * j / nt;
+  const Alignment &a = alignment;
+  if (!align_with_features || !mesh_file.empty() || a.periods == 0 || nt % a.periods != 0)
+    return nodes;
+  std::vector<double> breaks = a.theta_breaks;
+  breaks.push_back(0);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  std::vector<double> lengths;
+  for (std::size_t k = 0; k < breaks.size(); ++k)
+    lengths.push_back((k + 1 < breaks.size() ? breaks[k + 1] : 1.0) - breaks[k]);
+  const std::vector<unsigned int> count = share_cells(nt / a.periods, lengths);
+  if (count.empty())
+    return nodes;
+  const double period = 2 * M_PI / a.periods;
+  unsigned int j = 0;
+  for (unsigned int p = 0; p < a.periods; ++p)
+    for (std::size_t k = 0; k < breaks.size(); ++k)
+      for (unsigned int c = 0; c < count[k]; ++c)
+        nodes[j++] = a.phase + period * (p + breaks[k] + lengths[k] * c / count[k]);
+  nodes[nt] = nodes[0] + 2 * M_PI;
+  return nodes;
+}
+
 std::vector<double> AnnulusMesh::radial_nodes(const unsigned int nr, const double ri,
                                               const double ro) const
 {
+  std::vector<double> breaks;
+  if (align_with_features && mesh_file.empty())
+    for (const double b : alignment.radial_breaks)
+      if (b > ri + 1e-9 * ro && b < ro - 1e-9 * ro)
+        breaks.push_back(b);
+  if (!breaks.empty())
+  {
+    // Nodes on the feature circles: the pieces between them get cells in proportion to their
+    // share of the grading measure (uniform within each in that measure).
+    AnnulusMesh plain = *this;
+    plain.alignment.radial_breaks.clear();
+    const unsigned int fine = 4096;
+    const std::vector<double> map = plain.radial_nodes(fine, ri, ro); // s = i / fine
+    auto to_s = [&](const double r)
+    {
+      const std::size_t i =
+          std::min<std::size_t>(std::lower_bound(map.begin(), map.end(), r) - map.begin(), fine);
+      if (i == 0)
+        return 0.0;
+      return (i - 1 + (r - map[i - 1]) / (map[i] - map[i - 1])) / fine;
+    };
+    auto from_s = [&](const double s)
+    {
+      const double x = std::min(std::max(s, 0.0), 1.0) * fine;
+      const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(x), fine - 1);
+      return map[i] + (x - i) * (map[i + 1] - map[i]);
+    };
+    std::sort(breaks.begin(), breaks.end());
+    std::vector<double> s_breaks{0.0}, lengths;
+    for (const double b : breaks)
+      s_breaks.push_back(to_s(b));
+    s_breaks.push_back(1.0);
+    for (std::size_t k = 0; k + 1 < s_breaks.size(); ++k)
+      lengths.push_back(s_breaks[k + 1] - s_breaks[k]);
+    const std::vector<unsigned int> count = share_cells(nr, lengths);
+    if (!count.empty())
+    {
+      std::vector<double> nodes{ri};
+      for (std::size_t k = 0; k < count.size(); ++k)
+        for (unsigned int c = 1; c <= count[k]; ++c)
+          nodes.push_back(c == count[k] ? (k < breaks.size() ? breaks[k] : ro)
+                                        : from_s(s_breaks[k] + lengths[k] * c / count[k]));
+      return nodes;
+    }
+  }
   std::vector<double> nodes(nr + 1);
   for (unsigned int i = 0; i <= nr; ++i)
     nodes[i] = ri + (ro - ri) * i / nr;
@@ -184,10 +312,11 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
     const unsigned int nr0 = nr >> extra, nt0 = nt >> extra;
     std::vector<Point<2>> vertices;
     const std::vector<double> radii = radial_nodes(nr, ri, ro);
+    const std::vector<double> angles = angular_nodes(nt);
     for (unsigned int j = 0; j < nt0; ++j)
       for (unsigned int i = 0; i <= nr0; ++i)
       {
-        const double r = radii[i << extra], t = 2 * M_PI * j / nt0;
+        const double r = radii[i << extra], t = angles[j << extra] + alignment.shift(r);
         vertices.emplace_back(r * std::cos(t), r * std::sin(t));
       }
     auto index = [&](unsigned int i, unsigned int j) { return (j % nt0) * (nr0 + 1) + i; };
@@ -239,15 +368,14 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
 
 void AnnulusMesh::place_vertices(parallel::distributed::Triangulation<2> &tria,
                                  const std::vector<double> &radii, const unsigned int nt,
-                                 const unsigned int extra, const unsigned int refinements)
+                                 const unsigned int extra, const unsigned int refinements) const
 {
   // Refinement on the polar manifold halves cells in (r, theta): a vertex lies at the mean radius
-  // of its parents, i.e. the radii now interpolate the coarse nodes linearly. The mesh asked for
-  // has the graded nodes `radii` (nr + 1 of them), refined `refinements` times the same way. Both
-  // lists are sorted and far apart compared with round-off, so a vertex is identified by the
-  // nearest radius of the first list and moved to the same index of the second; theta is put
-  // back on the exact grid 2 pi j / (nt 2^refinements) that the direct construction uses.
-  const unsigned int nr = radii.size() - 1;
+  // and mean angle of its parents, i.e. radii and angles (and the spiral shift of the angles) now
+  // interpolate the coarse nodes linearly in the index. The mesh asked for has the nodes `radii`
+  // and angular_nodes(nt), refined `refinements` times the same way. The lists are sorted and far
+  // apart compared with round-off, so a vertex is identified by the nearest radius and the
+  // nearest (unshifted) angle of the first lists and moved to the same indices of the second.
   auto interpolate = [](const std::vector<double> &nodes, const unsigned int levels)
   {
     const unsigned int f = 1u << levels, n = nodes.size() - 1;
@@ -260,12 +388,26 @@ void AnnulusMesh::place_vertices(parallel::distributed::Triangulation<2> &tria,
     out[n * f] = nodes[n];
     return out;
   };
-  std::vector<double> coarse_radii;
+  const unsigned int nr = radii.size() - 1;
+  const std::vector<double> angles = angular_nodes(nt);
+  std::vector<double> coarse_radii, coarse_shift, coarse_angles;
   for (unsigned int i = 0; i <= nr; i += (1u << extra))
+  {
     coarse_radii.push_back(radii[i]);
+    coarse_shift.push_back(alignment.shift(radii[i]));
+  }
+  for (unsigned int j = 0; j <= nt; j += (1u << extra))
+    coarse_angles.push_back(angles[j]);
   const std::vector<double> now = interpolate(coarse_radii, extra + refinements);
+  const std::vector<double> now_shift = interpolate(coarse_shift, extra + refinements);
+  const std::vector<double> now_angles = interpolate(coarse_angles, extra + refinements);
   const std::vector<double> wanted = interpolate(radii, refinements);
-  const double n_theta = double(nt) * double(1u << refinements);
+  const std::vector<double> wanted_angles = interpolate(angles, refinements);
+  const std::size_t n_theta = now_angles.size() - 1;
+  std::vector<double> uniform(nt + 1);
+  for (unsigned int j = 0; j <= nt; ++j)
+    uniform[j] = 2 * M_PI * j / nt;
+  const bool plain = angles == uniform && alignment.spiral_cot == 0;
   std::vector<bool> moved(tria.n_vertices(), false);
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int v : cell->vertex_indices())
@@ -278,12 +420,19 @@ void AnnulusMesh::place_vertices(parallel::distributed::Triangulation<2> &tria,
         std::size_t i = above - now.begin();
         if (i == now.size() || (i > 0 && rho - now[i - 1] < *above - rho))
           --i;
-        double turns = std::atan2(x[1], x[0]) / (2 * M_PI);
-        if (turns < 0)
-          turns += 1;
-        const long j = std::lround(turns * n_theta) % long(n_theta);
-        const double t = 2 * M_PI * double(j) / n_theta;
-        x = Point<2>(wanted[i] * std::cos(t), wanted[i] * std::sin(t));
+        // angle without the spiral shift, brought into [now_angles[0], now_angles[0] + 2 pi)
+        double t = std::atan2(x[1], x[0]) - now_shift[i] - now_angles[0];
+        t -= 2 * M_PI * std::floor(t / (2 * M_PI));
+        t += now_angles[0];
+        const auto after = std::lower_bound(now_angles.begin(), now_angles.end(), t);
+        std::size_t j = after - now_angles.begin();
+        if (j == now_angles.size() || (j > 0 && t - now_angles[j - 1] < *after - t))
+          --j;
+        j %= n_theta;
+        // the plain polar grid keeps its exact angles 2 pi j / n
+        const double theta = plain ? 2 * M_PI * double(j) / double(n_theta)
+                                   : wanted_angles[j] + alignment.shift(wanted[i]);
+        x = Point<2>(wanted[i] * std::cos(theta), wanted[i] * std::sin(theta));
       }
 }
 

@@ -1,5 +1,6 @@
 #include <sealfe/film/film_loads.h>
 #include <sealfe/film/reynolds_solver.h>
+#include <sealfe/film/surface_features.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -11,6 +12,24 @@
 
 namespace sealfe
 {
+namespace
+{
+/// d(dh/dt) of a perturbation in the frame of the solve: its own rate, plus, when the equation
+/// is solved in the frame of a rotating textured face (reynolds_solver.cc, local_film), the
+/// motion of the perturbed film relative to that frame, w_F d(dh)/dtheta (centred difference).
+double perturbation_squeeze(const FilmPerturbation &p, const double r, const double theta,
+                            const double w_frame)
+{
+  double dh_t = p.dh_dt ? p.dh_dt(r, theta) : 0.0;
+  if (w_frame != 0 && p.dh)
+  {
+    const double step = 1e-6;
+    dh_t += w_frame * (p.dh(r, theta + step) - p.dh(r, theta - step)) / (2 * step);
+  }
+  return dh_t;
+}
+} // namespace
+
 nlohmann::json FilmLoads::to_json() const
 {
   return {{"force_z", force_z},
@@ -133,7 +152,13 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   const ReynoldsSolver::LocalFilm &f = x.f;
   const double r = f.r, h = f.h, JxW = x.JxW;
   const double liquid = 1 - x.v;
-  const double dp_dtheta = -x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1];
+  // Surface features on the rotor: its face has step walls whose pressure the shear integral
+  // misses. By the torque balance of the film the torque resisting the rotor is the one that
+  // drags the smooth stator face, whose Poiseuille shear has the opposite sign.
+  const double face =
+      solver.film.features && solver.film.features->face == SurfaceFeatures::Face::rotor ? -1.0
+                                                                                         : 1.0;
+  const double dp_dtheta = face * (-x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1]);
   const double liquid_clamped = std::clamp(liquid, 0.0, 1.0);
   const double u1 = solver.conditions.rotor_speed * r, u2 = solver.conditions.stator_speed * r;
   const FlowFactors &flow = solver.flow_factors;
@@ -148,7 +173,7 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   }
   else
   {
-    const double ddp_dtheta = -x.x[1] * d.grad_dp[0] + x.x[0] * d.grad_dp[1];
+    const double ddp_dtheta = face * (-x.x[1] * d.grad_dp[0] + x.x[0] * d.grad_dp[1]);
     const double eps = 1e-7 * h;
     const double dcouette = (couette(h + eps) - couette(h - eps)) / (2 * eps);
     const double dpois =
@@ -206,6 +231,8 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   const ReynoldsSolver &s = solver;
   const unsigned int n_k = perturbations.size();
   const bool base = n_k == 1 && perturbations[0] == nullptr;
+  const double w_frame =
+      s.film.feature_frame_speed(s.conditions.rotor_speed, s.conditions.stator_speed);
   const QGauss<2> quadrature(s.polynomial_degree + 2); // the assembly's rule (see there)
   FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
@@ -300,7 +327,7 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
           if (d.direction)
           {
             d.dh = d.direction->dh ? d.direction->dh(x.f.r, x.f.theta) : 0.0;
-            d.dh_t = d.direction->dh_dt ? d.direction->dh_dt(x.f.r, x.f.theta) : 0.0;
+            d.dh_t = perturbation_squeeze(*d.direction, x.f.r, x.f.theta, w_frame);
           }
           d.dp = dp_k[k][q];
           d.dv = dv_k[k][q];
@@ -407,6 +434,8 @@ std::vector<LoadIntegrator::VectorType> LoadIntegrator::linearized_right_hand_si
   // cavity boundary with the perturbation; reynolds: the active set, frozen). One cell loop for
   // all right-hand sides.
   const ReynoldsSolver &s = solver;
+  const double w_frame =
+      s.film.feature_frame_speed(s.conditions.rotor_speed, s.conditions.stator_speed);
   const QGauss<2> quadrature(s.polynomial_degree + 2); // the assembly's rule
   FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
@@ -442,7 +471,7 @@ std::vector<LoadIntegrator::VectorType> LoadIntegrator::linearized_right_hand_si
         {
           const FilmPerturbation &perturbation = perturbations[k];
           const double dh = perturbation.dh ? perturbation.dh(r, theta) : 0.0;
-          const double dh_dt = perturbation.dh_dt ? perturbation.dh_dt(r, theta) : 0.0;
+          const double dh_dt = perturbation_squeeze(perturbation, r, theta, w_frame);
           const Tensor<1, 2> dflux = dh * (f.dK_dh * grad_p[q]) - liquid * dh * f.dc_dh;
           double streamline = 0;
           if (jfo)

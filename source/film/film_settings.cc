@@ -161,13 +161,16 @@ bool FilmSettings::same_discretization(const FilmSettings &other, const unsigned
   const bool same_mesh =
       a.radial_cells == b.radial_cells && a.circumferential_cells == b.circumferential_cells &&
       a.global_refinements == b.global_refinements && a.mesh_file == b.mesh_file &&
-      a.radial_grading == b.radial_grading && a.grading_exponent == b.grading_exponent;
+      a.radial_grading == b.radial_grading && a.grading_exponent == b.grading_exponent &&
+      a.align_with_features == b.align_with_features;
+  // The built-in mesh puts cell edges on the steps of surface features.
+  const bool same_features = geometry.features == other.geometry.features;
   // The built-in mesh is graded by the axisymmetric film C0 + beta (r - ri) only (not by z or
   // the tilts), so that perturbed and transient solves keep their mesh.
   const bool graded = a.mesh_file.empty() && a.radial_grading;
   const bool same_grading = !graded || (geometry.clearance == other.geometry.clearance &&
                                         geometry.coning == other.geometry.coning);
-  return same_mesh && same_grading && coarsening == other_coarsening &&
+  return same_mesh && same_grading && same_features && coarsening == other_coarsening &&
          polynomial_degree == other.polynomial_degree &&
          geometry.inner_radius == other.geometry.inner_radius &&
          geometry.outer_radius == other.geometry.outer_radius;

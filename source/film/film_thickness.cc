@@ -1,9 +1,12 @@
+#include <sealfe/film/film_expression.h>
 #include <sealfe/film/film_thickness.h>
+#include <sealfe/film/surface_features.h>
 #include <sealfe/numerics/minimisation.h>
 #include <sealfe/numerics/number_lists.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -46,6 +49,14 @@ void FilmThickness::declare_parameters(dealii::ParameterHandler &prm)
   prm.declare_entry(
       "Axial offset", numerics::to_prm_string(defaults.axial_offset), Double(-max_film, max_film),
       "Axial displacement z (m) of the flexible ring from the set point (adds to h).");
+  prm.declare_entry("Film expression", "", dealii::Patterns::Anything(),
+                    "Additional film term (m) added to h, a formula (muparser) in r (m), theta "
+                    "(rad), x, y (m), t (s) and the constants below, e.g. a*cos(n*theta)*(r - "
+                    "0.0355)/0.005. Empty: none. A formula that makes the film touch down is "
+                    "refused like any other touch-down.");
+  prm.declare_entry("Film expression constants", "", dealii::Patterns::Anything(),
+                    "Constants of the film expression, e.g. \"a=1e-6, n=8\".");
+  SurfaceFeatures::declare_parameters(prm);
   prm.leave_subsection();
 
   prm.enter_subsection("Squeeze motion");
@@ -74,12 +85,50 @@ void FilmThickness::parse_parameters(dealii::ParameterHandler &prm)
   wave_number = prm.get_double("Wave number");
   wave_phase = prm.get_double("Wave phase");
   axial_offset = prm.get_double("Axial offset");
+  const std::string formula = prm.get("Film expression");
+  expression.reset();
+  if (formula.find_first_not_of(" \t") != std::string::npos)
+    expression = std::make_shared<const FilmExpression>(
+        formula, prm.get("Film expression constants"), outer_radius);
+  features = SurfaceFeatures::parse(prm, inner_radius, outer_radius);
   prm.leave_subsection();
   prm.enter_subsection("Squeeze motion");
   axial_velocity = prm.get_double("Axial velocity");
   tilt_rate_x = prm.get_double("Tilt rate x");
   tilt_rate_y = prm.get_double("Tilt rate y");
   prm.leave_subsection();
+}
+
+double FilmThickness::added_value(const double r, const double theta) const
+{
+  double h = 0;
+  if (expression)
+    h += expression->value(r, theta, time);
+  if (features)
+    h += features->depth(r, theta);
+  return h;
+}
+
+double FilmThickness::expression_d_dr(const double r, const double theta) const
+{
+  return expression->d_dr(r, theta, time);
+}
+
+double FilmThickness::expression_d_dtheta(const double r, const double theta) const
+{
+  return expression->d_dtheta(r, theta, time);
+}
+
+double FilmThickness::expression_d_dt(const double r, const double theta) const
+{
+  return expression->d_dt(r, theta, time);
+}
+
+double FilmThickness::feature_frame_speed(const double rotor_speed, const double stator_speed) const
+{
+  if (!features)
+    return 0;
+  return features->face == SurfaceFeatures::Face::rotor ? rotor_speed : stator_speed;
 }
 
 void FilmThickness::set_tilt_vector(const double tx, const double ty)
@@ -98,6 +147,46 @@ FilmThickness::Extremum extremum(const FilmThickness &h, const bool maximum)
 {
   FilmThickness::Extremum best{0, 0, 0};
   bool first = true;
+  if (h.expression)
+  {
+    // Analytic film + a formula: no longer linear in r. Sample a polar grid (33 circles x 2048
+    // angles), then polish the best sample by alternating Brent searches in theta and r.
+    // Surface features (recesses) are left out: they never bring the faces closer.
+    const auto film = [&](const double r, const double theta)
+    {
+      const double v = h.analytic_value(r, theta) + h.expression->value(r, theta, h.time);
+      return maximum ? -v : v;
+    };
+    const unsigned int nr = 32, nt = 2048;
+    double best_value = std::numeric_limits<double>::infinity(), r_best = 0, t_best = 0;
+    for (unsigned int i = 0; i <= nr; ++i)
+      for (unsigned int j = 0; j < nt; ++j)
+      {
+        const double r = h.inner_radius + (h.outer_radius - h.inner_radius) * i / nr;
+        const double t = 2 * M_PI * j / nt;
+        const double v = film(r, t);
+        if (v < best_value)
+          best_value = v, r_best = r, t_best = t;
+      }
+    const double dr = (h.outer_radius - h.inner_radius) / nr, dt = 2 * M_PI / nt;
+    for (unsigned int round = 0; round < 3; ++round)
+    {
+      const auto in_theta =
+          numerics::sampled_minimum([&](const double t) { return film(r_best, t); }, t_best - dt,
+                                    t_best + dt, 8, numerics::Domain::interval);
+      if (in_theta.value < best_value)
+        best_value = in_theta.value, t_best = in_theta.x;
+      const auto in_r = numerics::sampled_minimum(
+          [&](const double r) { return film(r, t_best); }, std::max(h.inner_radius, r_best - dr),
+          std::min(h.outer_radius, r_best + dr), 8, numerics::Domain::interval);
+      if (in_r.value < best_value)
+        best_value = in_r.value, r_best = in_r.x;
+    }
+    best = {maximum ? -best_value : best_value, r_best, std::fmod(t_best + 4 * M_PI, 2 * M_PI)};
+    if (maximum && h.features)
+      best.value += h.features->max_depth();
+    return best;
+  }
   for (const double r : {h.inner_radius, h.outer_radius})
   {
     if (h.wave_amplitude == 0)
@@ -120,6 +209,8 @@ FilmThickness::Extremum extremum(const FilmThickness &h, const bool maximum)
       best = {m.value, r, std::fmod(m.x + 4 * M_PI, 2 * M_PI)};
     first = false;
   }
+  if (maximum && h.features)
+    best.value += h.features->max_depth(); // an upper bound
   return best;
 }
 } // namespace
@@ -165,12 +256,18 @@ void FilmThickness::validate(const bool allow_touch_down) const
     fail(s.str());
   }
   const Extremum m = minimum();
+  if (expression && !std::isfinite(m.value))
+    fail("Geometry: Film expression '" + expression->formula() +
+         "' is not a finite number everywhere on the dam (a division by zero or a log of a "
+         "non-positive number?)");
   if (!(m.value > 0) && !allow_touch_down)
   {
     std::ostringstream s;
     s << "Geometry: the film touches down: h = " << m.value << " m (overlap " << 0.0 - m.value
-      << " m) at r = " << m.r << " m, theta = " << m.theta
-      << " rad; reduce tilt/waviness or raise the clearance (or model rough faces in contact: "
+      << " m) at r = " << m.r << " m, theta = " << m.theta << " rad"
+      << (expression ? " with Film expression '" + expression->formula() + "'" : std::string())
+      << "; reduce tilt/waviness" << (expression ? "/the expression" : "")
+      << " or raise the clearance (or model rough faces in contact: "
          "Roughness/Model = patir-cheng with Contact/Model = gw-ceb)";
     fail(s.str());
   }

@@ -3,6 +3,7 @@
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/round_off.h>
+#include <sealfe/film/surface_features.h>
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi_remote_point_evaluation.h>
@@ -79,6 +80,8 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   // coefficients, transients) keeps the same mesh.
   mesh_parameters.grading_clearance = film.clearance;
   mesh_parameters.grading_coning = film.coning;
+  mesh_parameters.alignment =
+      film.features ? film.features->mesh_alignment() : AnnulusMesh::Alignment();
   mesh_parameters.create(triangulation, film.inner_radius, film.outer_radius, coarsening);
 
   fe = std::make_unique<FE_Q<2>>(polynomial_degree);
@@ -269,12 +272,23 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
   f.theta = std::atan2(x[1], x[0]);
   f.h = film.value(f.r, f.theta);
   const double mu = conditions.viscosity;
-  const double w_mean = conditions.mean_speed();
+  // Surface features: the equation is solved in the frame of the face that carries them (they
+  // stand still there), where the mean surface velocity is (w1 + w2)/2 - w_F and the rest of the
+  // film (analytic + expression) moves at -w_F: its dh/dt gains w_F dh/dtheta. For the full film
+  // this is the stator-frame equation at the same instant (integrate the moving part by parts
+  // in theta); with a cavity it neglects the cavity's own motion relative to the features
+  // (quasi-steady, exact when the rest of the film is axisymmetric). Without features w_F = 0.
+  const double w_frame =
+      film.features ? film.feature_frame_speed(conditions.rotor_speed, conditions.stator_speed)
+                    : 0.0;
+  const double w_mean = conditions.mean_speed() - w_frame;
   const double w_half_difference = 0.5 * (conditions.rotor_speed - conditions.stator_speed);
   const Tensor<1, 2> er({x[0] / f.r, x[1] / f.r}), et({-x[1] / f.r, x[0] / f.r});
   const Tensor<1, 2> rotation({-x[1], x[0]}); // r e_theta
   f.u = w_mean * rotation;
   double h_t = film.d_dt(f.r, f.theta);
+  if (w_frame != 0)
+    h_t += w_frame * film.fixed_d_dtheta(f.r, f.theta);
   if (source)
     h_t += source(x);
   const double dh_dtheta = film.d_dtheta(f.r, f.theta);
@@ -328,7 +342,8 @@ double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator 
 {
   // Streamline-diffusion parameter for the transport of the void fraction in the cavity: full
   // upwinding, tau = h_K / (2 |u|), with |u| the Couette speed at the cell centre.
-  const double speed = std::abs(conditions.mean_speed()) * cell->center().norm();
+  const double w_frame = film.feature_frame_speed(conditions.rotor_speed, conditions.stator_speed);
+  const double speed = std::abs(conditions.mean_speed() - w_frame) * cell->center().norm();
   return speed > 0 ? cell->diameter() / (2 * speed) : 0.0;
 }
 
@@ -478,6 +493,25 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
     settings.mesh.check_memory(settings.polynomial_degree);
     if (film.wave_amplitude != 0)
       settings.mesh.check_resolves_waves(film.wave_number, settings.polynomial_degree);
+    // Surface features: the built-in mesh can put cell edges on the steps only if every period
+    // of the features gets the same cells, at least one per piece (annulus_mesh.cc).
+    const AnnulusMesh &m = settings.mesh;
+    if (film.features && m.align_with_features && m.mesh_file.empty())
+    {
+      const AnnulusMesh::Alignment a = film.features->mesh_alignment();
+      const unsigned int nt = m.circumferential_cells, n = a.periods;
+      const unsigned int pieces = a.theta_breaks.size();
+      if (pieces > 1 && (nt % n != 0 || nt / n < pieces))
+      {
+        std::ostringstream s;
+        s << "Discretization: Circumferential cells = " << nt
+          << " cannot put cell edges on the steps of " << n
+          << " surface features (it must be a multiple of " << n << " with at least " << pieces
+          << " cells per period, e.g. " << n * std::max(pieces, 8u)
+          << "); or set Align with features = false";
+        throw std::runtime_error(s.str());
+      }
+    }
   }
   flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
@@ -535,6 +569,13 @@ double ReynoldsSolver::volume_flow_through_circle(const double rho,
     flow += -(er * (f.K * gradients[k])) * rho * 2 * M_PI / n_points;
   }
   return Utilities::MPI::sum(flow, mpi_communicator);
+}
+
+std::vector<double> ReynoldsSolver::pressure_at(const std::vector<Point<2>> &points) const
+{
+  Utilities::MPI::RemotePointEvaluation<2> cache;
+  return VectorTools::point_values<1>(*mapping, dof_handler, locally_relevant_solution, points,
+                                      cache);
 }
 
 double ReynoldsSolver::l2_error(const Function<2> &exact) const

@@ -171,7 +171,8 @@ TEST_P(PrmExample, RunsAndKeepsItsPinnedResults)
 INSTANTIATE_TEST_SUITE_P(Prm, PrmExample,
                          ::testing::Values("solve", "wavy_jfo", "coefficients", "table",
                                            "stability", "response", "annular", "equilibrium",
-                                           "transient"),
+                                           "transient", "rayleigh_pads", "spiral_grooves",
+                                           "dimples_jfo"),
                          [](const auto &info) { return info.param; });
 
 TEST(PrmExamples, EveryExampleHasAReference)
@@ -186,7 +187,7 @@ TEST(PrmExamples, EveryExampleHasAReference)
       references.insert(file.substr(0, file.size() - 15));
   }
   EXPECT_EQ(examples, references);
-  EXPECT_EQ(examples.size(), 9u); // the instantiation above lists them
+  EXPECT_EQ(examples.size(), 12u); // the instantiation above lists them
 }
 
 // The numbers of every CSV read back to the same double, in the shortest text that does.

@@ -19,6 +19,26 @@ public:
   static constexpr dealii::types::boundary_id inner_boundary = 0;
   static constexpr dealii::types::boundary_id outer_boundary = 1;
 
+  /// Where the built-in mesh must have cell edges: the steps of surface features
+  /// (surface_features.h). Angles repeat with `periods` around; the mesh lines theta = const are
+  /// sheared by spiral_cot ln(min(max(r, r0), r1) / r0) so that they follow log spirals.
+  struct Alignment
+  {
+    unsigned int periods = 0;          // 0: no angular alignment
+    std::vector<double> theta_breaks;  // fractions of a period, in [0, 1)
+    double phase = 0;                  // rad, start of the first period
+    std::vector<double> radial_breaks; // m, circles inside (ri, ro)
+    double spiral_cot = 0, spiral_r0 = 1, spiral_r1 = 1;
+    bool operator==(const Alignment &o) const
+    {
+      return periods == o.periods && theta_breaks == o.theta_breaks && phase == o.phase &&
+             radial_breaks == o.radial_breaks && spiral_cot == o.spiral_cot &&
+             spiral_r0 == o.spiral_r0 && spiral_r1 == o.spiral_r1;
+    }
+    /// theta shift of the mesh line through radius r
+    double shift(const double r) const;
+  };
+
   static void declare_parameters(dealii::ParameterHandler &prm);
   void parse_parameters(dealii::ParameterHandler &prm);
 
@@ -32,6 +52,10 @@ public:
   /// the nodes equidistribute int dr / h0(r)^1.5, h0 = film at theta's mean, so cells shrink where
   /// the film is thin and the pressure gradient (~1/h^3) is steep.
   std::vector<double> radial_nodes(const unsigned int nr, const double ri, const double ro) const;
+  /// Angular node positions (nt + 1 values, the last one 2 pi after the first): uniform, or with
+  /// the alignment's breaks as nodes when nt is a multiple of its periods (cells shared among the
+  /// pieces of a period in proportion to their length, at least one each).
+  std::vector<double> angular_nodes(const unsigned int nt) const;
 
   /// Throws std::runtime_error if the requested built-in mesh (elements of `degree`) has fewer
   /// than 4 nodes per wave of `wave_number` waves around the circumference: it cannot resolve the
@@ -59,13 +83,16 @@ public:
   double grading_clearance = 1;
   double grading_coning = 0;
   double grading_exponent = 1.5;
+  /// Cell edges on the steps of surface features (`Align with features`, default true).
+  bool align_with_features = true;
+  Alignment alignment;
 
 private:
   /// Move the vertices of the refined coarse grid (`extra` + `refinements` global refinements)
   /// to the nodes of the mesh asked for: graded `radii`, nt 2^refinements uniform angles.
-  static void place_vertices(dealii::parallel::distributed::Triangulation<2> &tria,
-                             const std::vector<double> &radii, const unsigned int nt,
-                             const unsigned int extra, const unsigned int refinements);
+  void place_vertices(dealii::parallel::distributed::Triangulation<2> &tria,
+                      const std::vector<double> &radii, const unsigned int nt,
+                      const unsigned int extra, const unsigned int refinements) const;
 };
 
 } // namespace sealfe

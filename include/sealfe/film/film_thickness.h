@@ -5,10 +5,14 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 namespace sealfe
 {
+class FilmExpression;  // film/film_expression.h
+class SurfaceFeatures; // film/surface_features.h
+
 /// Film thickness of a coned, tilted, wavy face pair. Reads subsection "Geometry" (shape) and
 /// "Squeeze motion" (velocities of the flexible ring, for the squeeze term and damping).
 ///
@@ -17,6 +21,9 @@ namespace sealfe
 ///
 /// The flexible ring's degrees of freedom are q = (z, tilt_x, tilt_y): its face moves axially by
 /// w = z + tilt_x * y - tilt_y * x, so gamma cos(psi) = -tilt_y and gamma sin(psi) = tilt_x.
+/// Optional: a user formula h_e(r, theta, x, y, t) (`Film expression`) and surface features
+/// (pads, grooves, dimples: recesses of the face that carries them) are added to h; without them
+/// (the default) nothing else is evaluated.
 class FilmThickness
 {
 public:
@@ -30,26 +37,52 @@ public:
 
   double value(const double r, const double theta) const
   {
+    const double h = analytic_value(r, theta);
+    return has_added_terms() ? h + added_value(r, theta) : h;
+  }
+  /// dh/dr (pointwise: surface features are piecewise constant, their steps are not in it)
+  double d_dr(const double r, const double theta) const
+  {
+    const double d = coning + tilt * std::cos(theta - tilt_angle);
+    return expression ? d + expression_d_dr(r, theta) : d;
+  }
+  /// dh/dtheta (pointwise, as d_dr)
+  double d_dtheta(const double r, const double theta) const { return fixed_d_dtheta(r, theta); }
+  /// dh/dt from the prescribed velocities (z_dot, tilt_x_dot, tilt_y_dot) of the flexible ring
+  /// and the time derivative of the film expression.
+  double d_dt(const double r, const double theta) const
+  {
+    const double d =
+        axial_velocity + tilt_rate_x * r * std::sin(theta) - tilt_rate_y * r * std::cos(theta);
+    return expression ? d + expression_d_dt(r, theta) : d;
+  }
+
+  /// The film without expression and features (coning, tilt, waviness).
+  double analytic_value(const double r, const double theta) const
+  {
     return clearance + axial_offset + coning * (r - inner_radius) +
            tilt * r * std::cos(theta - tilt_angle) +
            wave_amplitude * std::cos(wave_number * (theta - wave_phase));
   }
-  /// dh/dr
-  double d_dr(const double /*r*/, const double theta) const
+  /// dh/dtheta of the part of the film fixed in the frame of the solve (analytic + expression),
+  /// the part that moves relative to the features' frame (reynolds_solver.cc, local_film).
+  double fixed_d_dtheta(const double r, const double theta) const
   {
-    return coning + tilt * std::cos(theta - tilt_angle);
+    const double d = -tilt * r * std::sin(theta - tilt_angle) -
+                     wave_amplitude * wave_number * std::sin(wave_number * (theta - wave_phase));
+    return expression ? d + expression_d_dtheta(r, theta) : d;
   }
-  /// dh/dtheta
-  double d_dtheta(const double r, const double theta) const
-  {
-    return -tilt * r * std::sin(theta - tilt_angle) -
-           wave_amplitude * wave_number * std::sin(wave_number * (theta - wave_phase));
-  }
-  /// dh/dt from the prescribed velocities (z_dot, tilt_x_dot, tilt_y_dot) of the flexible ring.
-  double d_dt(const double r, const double theta) const
-  {
-    return axial_velocity + tilt_rate_x * r * std::sin(theta) - tilt_rate_y * r * std::cos(theta);
-  }
+  bool has_added_terms() const { return expression || features; }
+  /// Expression + feature depths at (r, theta) (0 without them).
+  double added_value(const double r, const double theta) const;
+  double expression_d_dr(const double r, const double theta) const;
+  double expression_d_dtheta(const double r, const double theta) const;
+  double expression_d_dt(const double r, const double theta) const;
+
+  /// Angular speed (rad/s) of the face that carries the surface features: the film equation is
+  /// solved in that ring's frame, where the features stand still (0 without features: the frame
+  /// of the solve is the non-rotating one, as without features).
+  double feature_frame_speed(const double rotor_speed, const double stator_speed) const;
 
   /// Minimum of h over the dam, and where it occurs (found on a fine polar grid + analytic
   /// radial extremes: h is linear in r for fixed theta).
@@ -78,6 +111,12 @@ public:
   double axial_velocity = 0;    // m/s
   double tilt_rate_x = 0;       // rad/s
   double tilt_rate_y = 0;       // rad/s
+  double time = 0;              // s, the t of the film expression
+
+  /// Geometry/Film expression (null: none) and Geometry/Surface features (null: none). Shared
+  /// (immutable) between copies of the film: the perturbed and transient films copy it often.
+  std::shared_ptr<const FilmExpression> expression;
+  std::shared_ptr<const SurfaceFeatures> features;
 };
 
 } // namespace sealfe

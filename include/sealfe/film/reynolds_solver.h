@@ -105,6 +105,9 @@ public:
   /// in FilmLoads are the consistent (conservative) ones.
   double volume_flow_through_circle(const double rho, const unsigned int n_points = 2048) const;
 
+  /// p_h (Pa) at the given points of the dam (on every rank, for all ranks' points).
+  std::vector<double> pressure_at(const std::vector<dealii::Point<2>> &points) const;
+
   /// L2 norm of (p_h - exact) over the dam (for convergence tests).
   double l2_error(const dealii::Function<2> &exact) const;
   /// int g(p_h) dA over the dam with the given rule on every cell (for quadrature checks).
