@@ -9,6 +9,8 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
+#include <Epetra_CrsMatrix.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -84,9 +86,68 @@ void JFOSolver::compute_cell_matrices()
     }
 }
 
+bool JFOSolver::prepare_global_matrices()
+{
+  // The Jacobian of an active-set round has column j of P A where node j keeps its pressure and
+  // of G where it is cavitated. Without constraints that couple dofs (hanging nodes) the
+  // condensed global matrix is that column selection of the assembled P A and G, entry by entry
+  // the same sums of cell values in the same order (bitwise the matrix of the cell-by-cell
+  // assembly; the constrained rows keep their diagonal from P A, as every constrained node
+  // keeps its pressure). The cell-by-cell insertion into the Trilinos matrix was most of the
+  // JFO assembly time (doc/performance.md), repeated on every active-set round.
+  if (global_matrices != 0)
+    return global_matrices > 0;
+  TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
+  global_matrices = -1;
+  if (Utilities::MPI::n_mpi_processes(s.mpi_communicator) != 1)
+    return false;
+  for (const auto i : s.locally_owned_dofs)
+    if (s.homogeneous_constraints.is_constrained(i) &&
+        (!s.homogeneous_constraints.get_constraint_entries(i)->empty() ||
+         s.homogeneous_constraints.is_inhomogeneously_constrained(i)))
+      return false;
+  const unsigned int n = s.fe->n_dofs_per_cell();
+  const double P = s.pressure_scale;
+  FullMatrix<double> J(n, n);
+  std::vector<types::global_dof_index> dofs(n);
+  const // deal.II 9.4 gives the Epetra matrix read-only; its values are set in place (the pattern
+        // and the filled state are unchanged)
+      auto &M = const_cast<Epetra_CrsMatrix &>(s.system_matrix.trilinos_matrix());
+  for (std::vector<double> *values : {&global_PA, &global_G})
+  {
+    s.system_matrix = 0;
+    for (const auto &cell : s.dof_handler.active_cell_iterators())
+    {
+      const auto k = cell->active_cell_index();
+      cell->get_dof_indices(dofs);
+      // the same products as the cell-by-cell assembly (P * A(i, j), G(i, j))
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+          J(i, j) = values == &global_PA ? P * cell_A[k](i, j) : cell_G[k](i, j);
+      s.homogeneous_constraints.distribute_local_to_global(J, dofs, s.system_matrix);
+    }
+    s.system_matrix.compress(VectorOperation::add);
+    values->resize(M.NumMyNonzeros());
+    std::size_t position = 0;
+    for (int row = 0; row < M.NumMyRows(); ++row)
+    {
+      int entries;
+      double *row_values;
+      int *columns;
+      M.ExtractMyRowView(row, entries, row_values, columns);
+      std::copy(row_values, row_values + entries, values->begin() + position);
+      position += entries;
+    }
+  }
+  global_matrices = 1;
+  return true;
+}
+
 double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool with_jacobian,
                            const bool active_set_step)
 {
+  // the global matrices are prepared outside this timer (in "jfo cell matrices")
+  const bool select_columns = with_jacobian && active_set_step && prepare_global_matrices();
   TimerOutput::Scope timer_scope(s.timer, "jfo assembly");
   const unsigned int n = s.fe->n_dofs_per_cell();
   FullMatrix<double> J(n, n);
@@ -96,7 +157,8 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
 
   if (with_jacobian)
   {
-    s.system_matrix = 0;
+    if (!select_columns)
+      s.system_matrix = 0;
     newton_rhs = 0;
   }
   residual = 0;
@@ -152,14 +214,41 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
           }
         }
         R += correction;
-        s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
-                                                             newton_rhs);
+        if (select_columns)
+          s.homogeneous_constraints.distribute_local_to_global(R, dofs, newton_rhs);
+        else
+          s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
+                                                               newton_rhs);
       }
     }
   residual.compress(VectorOperation::add);
   if (with_jacobian)
   {
-    s.system_matrix.compress(VectorOperation::add);
+    if (select_columns)
+    {
+      // column j from P A where node j keeps its pressure (a_j >= v_j), else from G
+      // deal.II 9.4 gives the Epetra matrix read-only; its values are set in place (the pattern
+      // and the filled state are unchanged)
+      auto &M = const_cast<Epetra_CrsMatrix &>(s.system_matrix.trilinos_matrix());
+      std::vector<char> keep_pressure(M.NumMyCols());
+      for (int c = 0; c < M.NumMyCols(); ++c)
+      {
+        const auto j = M.ColMap().GID64(c);
+        keep_pressure[c] = a[j] >= v[j];
+      }
+      std::size_t position = 0;
+      for (int row = 0; row < M.NumMyRows(); ++row)
+      {
+        int entries;
+        double *row_values;
+        int *columns;
+        M.ExtractMyRowView(row, entries, row_values, columns);
+        for (int e = 0; e < entries; ++e, ++position)
+          row_values[e] = keep_pressure[columns[e]] ? global_PA[position] : global_G[position];
+      }
+    }
+    else
+      s.system_matrix.compress(VectorOperation::add);
     newton_rhs.compress(VectorOperation::add);
   }
   double fb_squared = 0;

@@ -35,6 +35,10 @@ private:
   /// 1/2 (|R|^2 + |phi|^2). `active_set_step`: the linear system of a fixed cavitated set.
   double assemble(const VectorType &a, const VectorType &v, bool with_jacobian,
                   bool active_set_step = false);
+  /// The global matrices P A and G in the storage order of the system matrix (one rank, only
+  /// Dirichlet constraints), so that an active-set Jacobian is a column selection of the two;
+  /// false (and the cell-by-cell assembly is used) otherwise.
+  bool prepare_global_matrices();
   /// Start from the converged state of the mesh twice as coarse, else the clipped full film.
   void warm_start();
   /// Start values from the mesh-sequencing solver (a coarse ReynoldsSolver with a copy of the
@@ -64,6 +68,10 @@ private:
   const double flow_scale;
   std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
   std::vector<dealii::Vector<double>> cell_F;
+  /// Values of the assembled P A and G (row by row as the system matrix stores them), and
+  /// whether they can be used (0: not tried yet, 1: yes, -1: no).
+  std::vector<double> global_PA, global_G;
+  int global_matrices = 0;
 
   VectorType a_owned, v_owned, a, v, residual, newton_rhs, w, da, dv, trial_a, trial_v, ta, tv;
   VectorType best_a, best_v;
