@@ -5,6 +5,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -142,16 +143,34 @@ void write_file(const std::string &name, const std::string &content)
 }
 } // namespace
 
-const char *const FieldSelection::names =
-    "pressure, film thickness, volume flux, flow factors, contact pressure, liquid fraction, "
-    "cavitated";
+namespace
+{
+/// The names a user may list, and the flag each sets.
+const std::vector<std::pair<std::string, bool FieldSelection::*>> field_names = {
+    {"pressure", &FieldSelection::pressure},
+    {"film thickness", &FieldSelection::film_thickness},
+    {"volume flux", &FieldSelection::volume_flux},
+    {"flow factors", &FieldSelection::flow_factors},
+    {"contact pressure", &FieldSelection::contact_pressure},
+    {"liquid fraction", &FieldSelection::liquid_fraction},
+    {"cavitated", &FieldSelection::cavitated}};
+
+/// "pressure, film thickness, ..." for the documentation and the messages.
+std::string listed_names()
+{
+  std::string list;
+  for (const auto &[name, flag] : field_names)
+    list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+} // namespace
 
 void FieldSelection::declare_parameters(ParameterHandler &prm)
 {
   prm.declare_entry("Fields", "all", Patterns::Anything(),
-                    std::string("Fields in the VTU: all (every field the film model has) or a "
-                                "comma-separated list of ") +
-                        names +
+                    "Fields in the VTU: all (every field the film model has) or a "
+                    "comma-separated list of " +
+                        listed_names() +
                         ". flow factors needs rough faces, contact pressure asperity contact, "
                         "liquid fraction the jfo model, cavitated a cavitation model. Each field "
                         "is a share of the write, which at 1e6 dofs takes seconds.");
@@ -163,30 +182,22 @@ void FieldSelection::parse_parameters(ParameterHandler &prm)
   *this = FieldSelection();
   if (Utilities::trim(text) == "all")
     return;
-  everything = false;
-  pressure = film_thickness = volume_flux = flow_factors = contact_pressure = liquid_fraction =
-      cavitated = false;
-  const std::vector<std::pair<std::string, bool *>> known = {
-      {"pressure", &pressure},
-      {"film thickness", &film_thickness},
-      {"volume flux", &volume_flux},
-      {"flow factors", &flow_factors},
-      {"contact pressure", &contact_pressure},
-      {"liquid fraction", &liquid_fraction},
-      {"cavitated", &cavitated}};
-  for (const std::string &item : Utilities::split_string_list(text, ','))
-  {
-    bool found = false;
-    for (const auto &[name, flag] : known)
-      if (item == name)
-        found = *flag = true;
-    if (!found)
-      throw std::runtime_error("Output/Fields: unknown field '" + item + "' (all, or a list of " +
-                               names + ")");
-  }
-  if (Utilities::split_string_list(text, ',').empty())
-    throw std::runtime_error("Output/Fields is empty (all, or a list of " + std::string(names) +
+  const std::vector<std::string> items = Utilities::split_string_list(text, ',');
+  if (items.empty())
+    throw std::runtime_error("Output/Fields is empty (all, or a list of " + listed_names() +
                              "); to write no fields set Write fields = false");
+  everything = false;
+  for (const auto &[name, flag] : field_names)
+    this->*flag = false;
+  for (const std::string &item : items)
+  {
+    const auto known = std::find_if(field_names.begin(), field_names.end(),
+                                    [&item](const auto &entry) { return entry.first == item; });
+    if (known == field_names.end())
+      throw std::runtime_error("Output/Fields: unknown field '" + item + "' (all, or a list of " +
+                               listed_names() + ")");
+    this->*(known->second) = true;
+  }
 }
 
 void FieldSelection::check_against(const FilmSettings &settings) const
@@ -214,25 +225,24 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   // with asperity contact, the liquid fraction with JFO and the cavity indicator with a
   // cavitation model (elsewhere they are 1, 0 or h everywhere). The owning rank is cell data
   // (one number per cell), added after the write.
-  const bool all = fields.everything;
   const bool jfo = s.cavitation.model == Cavitation::jfo;
   const bool cavitating = s.cavitation.model != Cavitation::none;
-  const bool write_flux = all || fields.volume_flux;
+  const bool write_flux = fields.volume_flux;
   FilmPostprocessor postprocessor(
       [&s](const Point<2> &x) { return s.local_film(x); }, *s.fe, s.polynomial_degree,
-      jfo && write_flux ? &s.locally_relevant_void : nullptr, all || fields.film_thickness,
-      write_flux, !s.flow_factors.is_smooth() && (all || fields.flow_factors),
-      s.contact.enabled() && (all || fields.contact_pressure));
+      jfo && write_flux ? &s.locally_relevant_void : nullptr, fields.film_thickness, write_flux,
+      !s.flow_factors.is_smooth() && fields.flow_factors,
+      s.contact.enabled() && fields.contact_pressure);
   DataOut<2> data_out;
   data_out.attach_dof_handler(s.dof_handler);
-  if (all || fields.pressure)
+  if (fields.pressure)
     data_out.add_data_vector(s.locally_relevant_solution, "pressure");
   if (!postprocessor.empty())
     data_out.add_data_vector(s.locally_relevant_solution, postprocessor);
   // Liquid fraction s = 1 - v (nodal, so exact at the nodes) and an indicator of the cavitated
   // region (1 where p <= p_cav or s < 1).
-  const bool write_liquid = jfo && (all || fields.liquid_fraction);
-  const bool write_cavitated = cavitating && (all || fields.cavitated);
+  const bool write_liquid = jfo && fields.liquid_fraction;
+  const bool write_cavitated = cavitating && fields.cavitated;
   TrilinosWrappers::MPI::Vector liquid_ghosted, cavitated_ghosted;
   if (write_liquid || write_cavitated)
   {

@@ -26,10 +26,9 @@ struct FieldSelection
   /// solve so that a bad list costs nothing.
   void check_against(const FilmSettings &settings) const;
 
-  /// The names a user may list.
-  static const char *const names;
-
-  bool everything = true; // "all": the model's fields; the flags below are then ignored
+  /// "all" (the default: every flag set; a field the model lacks is then skipped, not refused)
+  /// or a list naming the fields.
+  bool everything = true;
   bool pressure = true, film_thickness = true, volume_flux = true, flow_factors = true,
        contact_pressure = true, liquid_fraction = true, cavitated = true;
 };
