@@ -449,7 +449,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     data->operators.matrices[l] =
         (l == fine && data->fine_is_system) ? &fine_matrix : &data->level_matrices[l];
 
-  // Smoothers: Chebyshev around the inverse diagonal, spectrum estimated by a few CG steps.
+  // Smoothers: Chebyshev around radial line Jacobi, spectrum estimated by a few CG steps.
   data->smoother.smoothers.resize(0, fine);
   for (unsigned int l = 1; l < n_levels; ++l)
   {

@@ -190,7 +190,8 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
             const bool keep_pressure = local_a(j) >= local_v(j);
             for (unsigned int i = 0; i < n; ++i)
             {
-              J(i, j) = keep_pressure ? P * A(i, j) : G(i, j);
+              if (!select_columns) // else the global matrix takes its columns whole
+                J(i, j) = keep_pressure ? P * A(i, j) : G(i, j);
               correction(i) += keep_pressure ? G(i, j) * local_v(j) : P * A(i, j) * local_a(j);
             }
           }

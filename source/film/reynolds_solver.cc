@@ -278,20 +278,18 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
   // this is the stator-frame equation at the same instant (integrate the moving part by parts
   // in theta); with a cavity it neglects the cavity's own motion relative to the features
   // (quasi-steady, exact when the rest of the film is axisymmetric). Without features w_F = 0.
-  const double w_frame =
-      film.features ? film.feature_frame_speed(conditions.rotor_speed, conditions.stator_speed)
-                    : 0.0;
+  const double w_frame = film.feature_frame_speed(conditions.rotor_speed, conditions.stator_speed);
   const double w_mean = conditions.mean_speed() - w_frame;
   const double w_half_difference = 0.5 * (conditions.rotor_speed - conditions.stator_speed);
   const Tensor<1, 2> er({x[0] / f.r, x[1] / f.r}), et({-x[1] / f.r, x[0] / f.r});
   const Tensor<1, 2> rotation({-x[1], x[0]}); // r e_theta
   f.u = w_mean * rotation;
+  const double dh_dtheta = film.d_dtheta(f.r, f.theta);
   double h_t = film.d_dt(f.r, f.theta);
   if (w_frame != 0)
-    h_t += w_frame * film.fixed_d_dtheta(f.r, f.theta);
+    h_t += w_frame * dh_dtheta;
   if (source)
     h_t += source(x);
-  const double dh_dtheta = film.d_dtheta(f.r, f.theta);
 
   if (flow_factors.is_smooth())
   {

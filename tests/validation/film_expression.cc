@@ -153,5 +153,10 @@ TEST(FilmExpression, EmptyIsTodaysFilm)
   const FilmSettings s = parsed(" set Tilt = 1e-5\n");
   EXPECT_FALSE(s.geometry.expression);
   EXPECT_FALSE(s.geometry.features);
-  EXPECT_EQ(s.geometry.value(0.037, 1.1), s.geometry.analytic_value(0.037, 1.1));
+  // h = C0 + beta (r - ri) + gamma r cos(theta - psi) with the defaults C0 = 1e-6 m,
+  // beta = 1e-3, ri = 0.0355 m, psi = 0 (film_thickness.h), evaluated in the same order
+  const double r = 0.037, theta = 1.1;
+  EXPECT_EQ(s.geometry.value(r, theta), 1e-6 + 0.0 + 1e-3 * (r - 0.0355) +
+                                            1e-5 * r * std::cos(theta - 0.0) +
+                                            0.0 * std::cos(0.0 * (theta - 0.0)));
 }

@@ -84,6 +84,7 @@ TEST(FilmMultigrid, IterationsBoundedOverAspectSizeAndDegree)
       ReynoldsSolver s(tilted_seal(degree, nr, nt, 1, FilmSettings::LinearSolver::cg_gmg),
                        MPI_COMM_WORLD);
       s.run();
+      ASSERT_EQ(s.linear_solver_statistics().method(), FilmLinearSolver::Method::cg_gmg);
       EXPECT_LE(s.linear_iterations(), bound)
           << "Ntheta/Nr = " << aspect << ", " << s.n_dofs() << " dofs, degree " << degree;
     }
