@@ -1,4 +1,7 @@
 #include <sealfe/film/film_expression.h>
+#include <sealfe/numerics/number_lists.h>
+
+#include <deal.II/base/utilities.h>
 
 #include <cctype>
 #include <cmath>
@@ -69,26 +72,15 @@ std::string polar_to_cartesian(const std::string &formula)
   return out;
 }
 
-std::string trim(const std::string &s)
-{
-  const auto a = s.find_first_not_of(" \t");
-  if (a == std::string::npos)
-    return "";
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
 std::map<std::string, double> parse_constants(const std::string &list)
 {
   std::map<std::string, double> constants;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ','))
+  for (const std::string &item : dealii::Utilities::split_string_list(list, ','))
   {
-    item = trim(item);
     if (item.empty())
       continue;
     const auto eq = item.find('=');
-    const std::string name = trim(item.substr(0, eq));
+    const std::string name = dealii::Utilities::trim(item.substr(0, eq));
     if (eq == std::string::npos || name.empty() || !is_name_start(name[0]))
       fail("constant '" + item + "' is not of the form name=value (Film expression constants)");
     for (const char c : name)
@@ -97,19 +89,8 @@ std::map<std::string, double> parse_constants(const std::string &list)
     for (const char *reserved : {"r", "theta", "x", "y", "t", "pi", "Pi", "e"})
       if (name == reserved)
         fail("constant name '" + name + "' is reserved (r, theta, x, y, t, pi, e)");
-    const std::string value = trim(item.substr(eq + 1));
-    std::size_t used = 0;
-    double v = 0;
-    try
-    {
-      v = std::stod(value, &used);
-    }
-    catch (...)
-    {
-      used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(v))
-      fail("constant '" + name + "' has no numeric value (got '" + value + "')");
+    const double v = numerics::parse_finite_number(
+        item.substr(eq + 1), "Geometry: Film expression constants: constant '" + name + "'");
     constants[name] = v;
   }
   return constants;
@@ -136,7 +117,7 @@ std::string one_line(const std::string &what)
     }
     else if (!(c == ' ' && !out.empty() && out.back() == ' '))
       out += c;
-  return trim(out);
+  return dealii::Utilities::trim(out);
 }
 } // namespace
 
@@ -148,7 +129,7 @@ FilmExpression::FilmExpression(const std::string &formula, const std::string &co
       // derivative for a film that varies on the scale of the dam).
       r_step(6e-6 * ro)
 {
-  if (trim(formula).empty())
+  if (dealii::Utilities::trim(formula).empty())
     fail("the formula is empty");
   const auto c = parse_constants(constants);
   // deal.II prints muparser's report to std::cerr before it throws: keep it for the one-line

@@ -138,36 +138,35 @@ public:
       for (unsigned int p = lines->start[k]; p < lines->start[k + 1]; ++p)
         line_of[p] = k;
     }
+    // f(i, j, A_ij) for the entries of A that couple two dofs of one line
+    auto for_each_line_entry = [&](const auto &f)
+    {
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        int count;
+        double *values;
+        int *columns;
+        E.ExtractMyRowView(i, count, values, columns);
+        for (int c = 0; c < count; ++c)
+        {
+          const int j = E.RowMap().LID(E.ColMap().GID(columns[c]));
+          if (j >= 0 && line_of[j] == line_of[i])
+            f(i, unsigned(j), values[c]);
+        }
+      }
+    };
     // bandwidth of the line blocks (the element degree on the annulus)
     bandwidth = 0;
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      int count;
-      double *values;
-      int *columns;
-      E.ExtractMyRowView(i, count, values, columns);
-      for (int c = 0; c < count; ++c)
-      {
-        const int j = E.RowMap().LID(E.ColMap().GID(columns[c]));
-        if (j >= 0 && line_of[j] == line_of[i])
-          bandwidth = std::max<unsigned int>(bandwidth, std::abs(int(i) - j));
-      }
-    }
+    for_each_line_entry([this](const unsigned int i, const unsigned int j, double)
+                        { bandwidth = std::max(bandwidth, i > j ? i - j : j - i); });
     const unsigned int w = bandwidth + 1;
     band.assign(std::size_t(n) * w, 0.0); // band[p * w + d] = A(p, p - d)
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      int count;
-      double *values;
-      int *columns;
-      E.ExtractMyRowView(i, count, values, columns);
-      for (int c = 0; c < count; ++c)
-      {
-        const int j = E.RowMap().LID(E.ColMap().GID(columns[c]));
-        if (j >= 0 && line_of[j] == line_of[i] && unsigned(j) <= i)
-          band[std::size_t(i) * w + (i - j)] += values[c];
-      }
-    }
+    for_each_line_entry(
+        [this, w](const unsigned int i, const unsigned int j, const double value)
+        {
+          if (j <= i)
+            band[std::size_t(i) * w + (i - j)] += value;
+        });
     // LDL^T of each line block, in place: band[p w] = 1 / D_p, band[p w + d] = L(p, p - d).
     for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
     {

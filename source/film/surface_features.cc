@@ -206,13 +206,22 @@ double SurfaceFeatures::local_angle(const double theta) const
   return a >= period ? 0.0 : a;
 }
 
-double SurfaceFeatures::spiral_shift(const double r) const
+double SurfaceFeatures::spiral_cot() const
 {
   // theta = phase + k P + s cot(alpha) ln(r / r_in): moving in +theta along a groove goes
   // outward if s > 0, so the fluid dragged in +theta is pumped outward (drawn on the stator).
   const double s = (pump_inward ? -1.0 : 1.0) * (face == Face::rotor ? -1.0 : 1.0);
-  const double rc = std::min(std::max(r, band_inner), band_outer);
-  return s * std::log(rc / band_inner) / std::tan(spiral_angle);
+  return s / std::tan(spiral_angle);
+}
+
+double SurfaceFeatures::spiral_shift(const double r) const
+{
+  // the mesh lines' own formula (AnnulusMesh::Alignment::shift), so grooves and lines coincide
+  AnnulusMesh::Alignment spiral;
+  spiral.spiral_cot = spiral_cot();
+  spiral.spiral_r0 = band_inner;
+  spiral.spiral_r1 = band_outer;
+  return spiral.shift(r);
 }
 
 double SurfaceFeatures::depth(const double r, const double theta) const
@@ -312,8 +321,7 @@ AnnulusMesh::Alignment SurfaceFeatures::mesh_alignment() const
   case Kind::spiral_grooves:
     a.theta_breaks = {0.0, groove_fraction};
     a.radial_breaks = {band_inner, band_outer};
-    a.spiral_cot =
-        (pump_inward ? -1.0 : 1.0) * (face == Face::rotor ? -1.0 : 1.0) / std::tan(spiral_angle);
+    a.spiral_cot = spiral_cot();
     a.spiral_r0 = band_inner;
     a.spiral_r1 = band_outer;
     break;

@@ -88,6 +88,8 @@ private:
   /// Angle within a period, in [0, P), in the stator's drawing sense (mirrored on the rotor).
   double local_angle(const double theta) const;
   double spiral_shift(const double r) const;
+  /// s cot(alpha) of the groove spirals theta = phase + k P + s cot(alpha) ln(r / r_in).
+  double spiral_cot() const;
   unsigned int dimple_rows = 0;
   double row_pitch = 0;
 };
