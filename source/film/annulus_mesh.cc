@@ -1,4 +1,5 @@
 #include <sealfe/film/annulus_mesh.h>
+#include <sealfe/film/feature_mesh.h>
 
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
@@ -7,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,6 +37,13 @@ void AnnulusMesh::declare_parameters(ParameterHandler &prm)
                     "Optional gmsh .msh file of the annulus (replaces the built-in mesh). Its "
                     "boundary must be the two circles r = ri and r = ro of the Geometry section; "
                     "the boundary is classified by radius, physical tags are not needed.");
+  prm.declare_entry("Mesh size", "0", Patterns::Double(0),
+                    "> 0: generate the Mesh file with gmsh (overwriting it; empty: a temporary "
+                    "file): all quadrilaterals of "
+                    "about this size (m) with mesh lines on the circles of dimples (the film's "
+                    "steps), then refined by Global refinements with the circles kept. The JFO "
+                    "coarse levels are generated at 2, 4, ... times this size. 0: read the Mesh "
+                    "file as it is.");
   prm.declare_entry("Align with features", "true", Patterns::Bool(),
                     "Put cell edges of the built-in mesh on the steps of surface features "
                     "(pads: theta and r lines; spiral grooves: the mesh lines follow the spirals; "
@@ -49,6 +59,17 @@ void AnnulusMesh::parse_parameters(ParameterHandler &prm)
   circumferential_cells = prm.get_integer("Circumferential cells");
   global_refinements = prm.get_integer("Global refinements");
   mesh_file = prm.get("Mesh file");
+  mesh_size = prm.get_double("Mesh size");
+  if (mesh_size > 0 && mesh_file.empty())
+  {
+    // the generated mesh goes to a temporary file of this run
+    static unsigned int count = 0;
+    mesh_file =
+        (std::filesystem::temp_directory_path() /
+         ("sealfe-mesh-" + std::to_string(::getpid()) + "-" + std::to_string(count++) + ".msh"))
+            .string();
+    temporary_mesh_file = true;
+  }
   radial_grading = prm.get_bool("Radial grading");
   align_with_features = prm.get_bool("Align with features");
   prm.leave_subsection();
@@ -95,10 +116,20 @@ void AnnulusMesh::check_memory(const unsigned int degree) const
   }
 }
 
+double AnnulusMesh::generated_size(const unsigned int coarsening) const
+{
+  if (!(mesh_size > 0) || coarsening <= global_refinements)
+    return 0;
+  return mesh_size * double(1u << std::min(coarsening - global_refinements, 20u));
+}
+
 bool AnnulusMesh::can_coarsen(const unsigned int coarsening) const
 {
   if (coarsening <= global_refinements)
     return true;
+  // a generated mesh: cells no larger than the circles (about 6 lines around each)
+  if (mesh_size > 0)
+    return alignment.circle_radius > 0 && generated_size(coarsening) <= alignment.circle_radius;
   if (!mesh_file.empty())
     return false;
   const unsigned int extra = coarsening - global_refinements;
@@ -277,6 +308,54 @@ void set_boundary_ids(Triangulation<2> &tria, const double ri, const double ro,
         }
       }
 }
+
+/// Give the faces that lie on one of the alignment's circles (both vertices on it) a
+/// PolarManifold about its centre (manifold ids 1, 2, ...), so that refinement and a higher-order
+/// mapping keep them on the circle; the rest keeps the annulus' manifold 0.
+void attach_circles(parallel::distributed::Triangulation<2> &tria,
+                    const AnnulusMesh::Alignment &alignment)
+{
+  const double R = alignment.circle_radius, tol = 1e-6 * R;
+  if (!(R > 0) || alignment.circle_centres.empty())
+    return;
+  // centres hashed on a grid of spacing 2 R: a point within R of a centre is in one of the 3 x 3
+  // buckets around its own
+  std::map<std::pair<long, long>, std::vector<unsigned int>> buckets;
+  auto key = [&](const Point<2> &x)
+  { return std::make_pair(long(std::floor(x[0] / (2 * R))), long(std::floor(x[1] / (2 * R)))); };
+  for (unsigned int k = 0; k < alignment.circle_centres.size(); ++k)
+    buckets[key(alignment.circle_centres[k])].push_back(k);
+  auto circle_of = [&](const Point<2> &x) -> int
+  {
+    const auto [i, j] = key(x);
+    for (long di = -1; di <= 1; ++di)
+      for (long dj = -1; dj <= 1; ++dj)
+      {
+        const auto it = buckets.find({i + di, j + dj});
+        if (it != buckets.end())
+          for (const unsigned int k : it->second)
+            if (std::abs(x.distance(alignment.circle_centres[k]) - R) < tol)
+              return int(k);
+      }
+    return -1;
+  };
+  std::vector<bool> used(alignment.circle_centres.size(), false);
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const auto f : cell->face_indices())
+    {
+      const auto face = cell->face(f);
+      const int k = circle_of(face->vertex(0));
+      if (k >= 0 && circle_of(face->vertex(1)) == k &&
+          face->vertex(0).distance(face->vertex(1)) < R)
+      {
+        face->set_manifold_id(1 + k);
+        used[k] = true;
+      }
+    }
+  for (unsigned int k = 0; k < used.size(); ++k)
+    if (used[k])
+      tria.set_manifold(1 + k, PolarManifold<2>(alignment.circle_centres[k]));
+}
 } // namespace
 
 void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const double ri,
@@ -333,7 +412,41 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
   }
   else
   {
-    std::ifstream in(mesh_file);
+    // Generated mesh: the file asked for at Mesh size (refined), or a coarser one in a temporary
+    // file for the coarse levels. One rank writes, all read.
+    std::string file = mesh_file;
+    if (mesh_size > 0)
+    {
+      const double size = coarsening > global_refinements ? generated_size(coarsening) : mesh_size;
+      if (coarsening > global_refinements)
+      {
+        std::string name =
+            (std::filesystem::temp_directory_path() / "sealfe-coarse-XXXXXX").string();
+        const int fd = ::mkstemp(name.data());
+        if (fd >= 0)
+          ::close(fd);
+        file = name + ".msh";
+        std::filesystem::remove(name);
+      }
+      const MPI_Comm comm = tria.get_communicator();
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        try
+        {
+          FeatureMesh::generate(FeatureMesh::geometry(ri, ro, alignment.circle_centres,
+                                                      alignment.circle_radius, size),
+                                file);
+        }
+        catch (std::exception &e)
+        {
+          error = e.what();
+        }
+      file = Utilities::MPI::broadcast(comm, file, 0);
+      error = Utilities::MPI::broadcast(comm, error, 0);
+      if (!error.empty())
+        throw std::runtime_error(error);
+    }
+    std::ifstream in(file);
     if (!in)
       throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
                                "' is missing or unreadable");
@@ -356,11 +469,20 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
     if (!has_inner || !has_outer)
       throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
                                "' does not have both circles r = ri and r = ro on its boundary");
+    if (mesh_size > 0 && (file != mesh_file || temporary_mesh_file))
+    {
+      in.close();
+      MPI_Barrier(tria.get_communicator()); // every rank has read it
+      if (Utilities::MPI::this_mpi_process(tria.get_communicator()) == 0)
+        std::filesystem::remove(file);
+    }
   }
 
   tria.copy_triangulation(coarse);
   tria.set_all_manifold_ids(0);
   tria.set_manifold(0, PolarManifold<2>(Point<2>()));
+  if (!mesh_file.empty())
+    attach_circles(tria, alignment);
   tria.refine_global(refinements + extra);
   if (extra > 0)
     place_vertices(tria, radial_nodes(nr, ri, ro), nt, extra, refinements);

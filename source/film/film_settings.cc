@@ -161,8 +161,8 @@ bool FilmSettings::same_discretization(const FilmSettings &other, const unsigned
   const bool same_mesh =
       a.radial_cells == b.radial_cells && a.circumferential_cells == b.circumferential_cells &&
       a.global_refinements == b.global_refinements && a.mesh_file == b.mesh_file &&
-      a.radial_grading == b.radial_grading && a.grading_exponent == b.grading_exponent &&
-      a.align_with_features == b.align_with_features;
+      a.mesh_size == b.mesh_size && a.radial_grading == b.radial_grading &&
+      a.grading_exponent == b.grading_exponent && a.align_with_features == b.align_with_features;
   // The built-in mesh puts cell edges on the steps of surface features.
   const bool same_features = geometry.features == other.geometry.features;
   // The built-in mesh is graded by the axisymmetric film C0 + beta (r - ri) only (not by z or

@@ -262,8 +262,8 @@ double SurfaceFeatures::depth(const double r, const double theta) const
     const int row = static_cast<int>(std::floor((r - band_inner) / row_pitch));
     for (int k = std::max(row - 1, 0); k <= std::min(row + 1, int(dimple_rows) - 1); ++k)
     {
-      const double rc = band_inner + (k + 0.5) * row_pitch;
-      const double t0 = phase + (staggered && k % 2 == 1 ? 0.5 * pitch : 0.0);
+      const double rc = row_radius(k);
+      const double t0 = row_phase(k);
       const double j = std::round((theta - t0) / pitch);
       const double dt = theta - t0 - j * pitch;
       const double d2 = r * r + rc * rc - 2 * r * rc * std::cos(dt);
@@ -274,6 +274,30 @@ double SurfaceFeatures::depth(const double r, const double theta) const
   }
   }
   return 0;
+}
+
+double SurfaceFeatures::row_radius(const unsigned int k) const
+{
+  return band_inner + (k + 0.5) * row_pitch;
+}
+
+double SurfaceFeatures::row_phase(const unsigned int k) const
+{
+  return phase + (staggered && k % 2 == 1 ? M_PI / number : 0.0);
+}
+
+std::vector<dealii::Point<2>> SurfaceFeatures::dimple_centres() const
+{
+  std::vector<dealii::Point<2>> centres;
+  if (kind != Kind::dimples)
+    return centres;
+  for (unsigned int k = 0; k < dimple_rows; ++k)
+    for (unsigned int j = 0; j < number; ++j)
+    {
+      const double r = row_radius(k), t = row_phase(k) + 2 * M_PI * j / number;
+      centres.emplace_back(r * std::cos(t), r * std::sin(t));
+    }
+  return centres;
 }
 
 double SurfaceFeatures::max_depth() const
@@ -326,9 +350,12 @@ AnnulusMesh::Alignment SurfaceFeatures::mesh_alignment() const
     a.spiral_r1 = band_outer;
     break;
   case Kind::dimples:
-    // circles are not mesh lines of a polar grid: only the band edges and the period
+    // circles are not mesh lines of a polar grid: only the band edges and the period; the
+    // generated gmsh mesh follows the circles
     a.theta_breaks = {0.0};
     a.radial_breaks = {band_inner, band_outer};
+    a.circle_centres = dimple_centres();
+    a.circle_radius = dimple_radius;
     break;
   }
   // drop breaks that coincide (within round-off) with 0 or each other

@@ -11,9 +11,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <vector>
+
+#include <unistd.h>
 
 using namespace sealfe;
 using namespace sealfe::test;
@@ -139,6 +142,59 @@ TEST(SurfaceFeaturesLong, DimplesJfoConvergence)
   // converging: the last difference smaller than the one before
   for (double FilmLoads::*m : {&FilmLoads::force_z, &FilmLoads::cavitated_fraction})
     EXPECT_GT(orders(runs, m).back(), 0.0);
+}
+
+// The same dimples on the gmsh mesh with lines on the circles (Mesh size 1 mm = r_p / 2, then 0..4
+// refinements that keep the new vertices on the circles: nested meshes, 2 to 32 cells across a
+// dimple). Full film: the pressure of a flat dimple between two equal ambient pressures is odd
+// about the dimple's centre line, so the exact force above ambient is 0; the fitted mesh is not
+// symmetric, its force is the discretisation error, O(h^2) for degree 1 with the steps on cell
+// edges (the pressure is smooth on each side of a step; the polygon misses the circles by O(h^2)).
+// JFO: the cavity's reformation edge is free (not a mesh line) and the streamline term is
+// O(h)-consistent (doc/reynolds.md): order 1 expected.
+TEST(SurfaceFeaturesLong, DimplesOnTheFittedMesh)
+{
+  const std::string file = (std::filesystem::temp_directory_path() /
+                            ("sealfe-long-dimples-" + std::to_string(::getpid()) + ".msh"))
+                               .string();
+  for (const std::string model : {"none", "jfo"})
+  {
+    std::vector<Timed> runs;
+    for (const unsigned int refinements : {0u, 1u, 2u, 3u, 4u})
+    {
+      DimpledSeal seal;
+      seal.radius = 2e-3;
+      seal.degree = 1;
+      seal.cavitation = model;
+      seal.mesh_size = 1e-3;
+      seal.mesh_file = file;
+      seal.refinements = refinements;
+      runs.push_back(solve(seal.settings()));
+      const FilmLoads &l = runs.back().loads;
+      const double flow_scale =
+          0.25 * seal.omega * seal.h * (seal.ro * seal.ro - seal.ri * seal.ri);
+      EXPECT_LT(std::abs(l.leakage_inner + l.leakage_outer + l.squeeze_flow), 1e-8 * flow_scale);
+    }
+    print("dimples fitted " + model, runs,
+          {{"force_z", &FilmLoads::force_z},
+           {"cavitated_fraction", &FilmLoads::cavitated_fraction},
+           {"friction_torque", &FilmLoads::friction_torque}});
+    if (model == "none")
+    {
+      // the force itself is the error: order from successive values
+      for (std::size_t k = 2; k < runs.size(); ++k)
+        EXPECT_GT(std::log2(std::abs(runs[k - 1].loads.force_z / runs[k].loads.force_z)), 1.8);
+      EXPECT_GT(orders(runs, &FilmLoads::friction_torque).back(), 1.8);
+    }
+    else
+    {
+      // order 1 for the cavity (measured 0.95, 0.98); the force is still pre-asymptotic at
+      // these sizes (orders 0.55, 0.72 up to 620 000 dofs): converging
+      EXPECT_GT(orders(runs, &FilmLoads::cavitated_fraction).back(), 0.8);
+      EXPECT_GT(orders(runs, &FilmLoads::force_z).back(), 0.3);
+    }
+  }
+  std::filesystem::remove(file);
 }
 
 // Speed (issue 16): faces that resolve 12 spiral grooves and ~1000 dimples, JFO against the

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sealfe
 {
@@ -48,6 +49,9 @@ public:
   AnnulusMesh::Alignment mesh_alignment() const;
   /// Dimples: the area density the layout achieves (dimple area / band area); else 0.
   double achieved_area_density() const;
+  /// Dimples: the centres (x, y in m, in the frame of the face) of all dimples, row by row; the
+  /// circles of radius dimple_radius about them are the film's steps. Else empty.
+  std::vector<dealii::Point<2>> dimple_centres() const;
   /// Number of features around (pads, grooves, dimples per row).
   unsigned int count() const { return number; }
 
@@ -90,6 +94,9 @@ private:
   double spiral_shift(const double r) const;
   /// s cot(alpha) of the groove spirals theta = phase + k P + s cot(alpha) ln(r / r_in).
   double spiral_cot() const;
+  /// Dimples: radius of the centres of row k, and the angle of its first centre.
+  double row_radius(const unsigned int k) const;
+  double row_phase(const unsigned int k) const;
   unsigned int dimple_rows = 0;
   double row_pitch = 0;
 };
