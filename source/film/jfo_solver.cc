@@ -1,4 +1,5 @@
 #include <sealfe/film/jfo_solver.h>
+#include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/sparse_direct.h>
 
@@ -321,7 +322,12 @@ bool JFOSolver::coarse_start()
     }
   std::vector<double> pressure, void_fraction;
   bool all_found = true;
-  if (!values_on_polar_grid(points, pressure, void_fraction))
+  // a mesh file refined globally: the coarse level is the same mesh refined once less
+  std::vector<std::vector<double>> nested;
+  if (!values_on_polar_grid(points, pressure, void_fraction) &&
+      !values_from_parent_cells(s.dof_handler, coarse.dof_handler,
+                                {&coarse.locally_relevant_solution, &coarse.locally_relevant_void},
+                                indices, nested))
   {
     // any mesh, any number of ranks: deal.II's point search (at 1e6 points a third of the JFO
     // time, doc/performance.md)
@@ -331,6 +337,11 @@ bool JFOSolver::coarse_start()
     void_fraction =
         VectorTools::point_values<1>(cache, coarse.dof_handler, coarse.locally_relevant_void);
     all_found = cache.all_points_found();
+  }
+  if (!nested.empty())
+  {
+    pressure = std::move(nested[0]);
+    void_fraction = std::move(nested[1]);
   }
   s.coarse_iterations = coarse.cavitation_iterations + coarse.coarse_iterations;
   const auto &coarse_work = coarse.linear_system_solver.statistics();
