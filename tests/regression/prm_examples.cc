@@ -172,7 +172,7 @@ INSTANTIATE_TEST_SUITE_P(Prm, PrmExample,
                          ::testing::Values("solve", "wavy_jfo", "coefficients", "table",
                                            "stability", "response", "annular", "equilibrium",
                                            "transient", "rayleigh_pads", "spiral_grooves",
-                                           "dimples_jfo"),
+                                           "dimples_jfo", "dimples_fitted"),
                          [](const auto &info) { return info.param; });
 
 TEST(PrmExamples, EveryExampleHasAReference)
@@ -187,7 +187,7 @@ TEST(PrmExamples, EveryExampleHasAReference)
       references.insert(file.substr(0, file.size() - 15));
   }
   EXPECT_EQ(examples, references);
-  EXPECT_EQ(examples.size(), 12u); // the instantiation above lists them
+  EXPECT_EQ(examples.size(), 13u); // the instantiation above lists them
 }
 
 // The numbers of every CSV read back to the same double, in the shortest text that does.
