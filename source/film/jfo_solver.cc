@@ -325,9 +325,10 @@ bool JFOSolver::coarse_start()
   // a mesh file refined globally: the coarse level is the same mesh refined once less
   std::vector<std::vector<double>> nested;
   if (!values_on_polar_grid(points, pressure, void_fraction) &&
-      !values_from_parent_cells(s.dof_handler, coarse.dof_handler,
-                                {&coarse.locally_relevant_solution, &coarse.locally_relevant_void},
-                                indices, nested))
+      (s.settings.mesh.mesh_file.empty() ||
+       !values_from_parent_cells(s.dof_handler, coarse.dof_handler,
+                                 {&coarse.locally_relevant_solution, &coarse.locally_relevant_void},
+                                 indices, nested)))
   {
     // any mesh, any number of ranks: deal.II's point search (at 1e6 points a third of the JFO
     // time, doc/performance.md)
