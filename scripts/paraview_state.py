@@ -1,4 +1,4 @@
-"""usage: pvbatch paraview_state.py [solution.{pvd,pvtu,vtu}] [--png out.png] [--size W H] [--subdivision N] [--flux glyphs|streams|none] [--cavity-edge] [--last]
+"""usage: pvbatch paraview_state.py [solution.{pvd,pvtu,vtu}] [--png out.png] [--size W H] [--subdivision N] [--flux glyphs|streams|none] [--cavity-edge] [--sector DEG] [--last]
 
 ParaView picture of a sealfe field file: pressure (with volume_flux arrows), film thickness and
 liquid fraction side by side, the annulus seen from +z, Lagrange cells subdivided (level 2).
@@ -66,6 +66,10 @@ def parse(argv):
                         help="volume_flux on the pressure view (default glyphs)")
     parser.add_argument("--cavity-edge", action="store_true",
                         help="outline the cavity (cavitated = 0.5) on the liquid fraction view")
+    parser.add_argument("--sector", type=float, default=360.0, metavar="DEG",
+                        help="show a sector of DEG degrees at the top of the annulus (theta = "
+                        "90 deg) instead of the whole face: textures are too small to see "
+                        "on the whole annulus (default 360)")
     parser.add_argument("--last", action="store_true",
                         help="show the last time of a .pvd (default: the first)")
     return parser.parse_args(argv)
@@ -97,15 +101,16 @@ def nice_ticks(lo, hi, count=6):
     return ticks, "%%-.%df" % decimals
 
 
-def style_bar(lut, view, title, lo, hi):
+def style_bar(lut, view, title, lo, hi, horizontal=False):
+    """Colour bar on the right of the view, or along its bottom (sector views)."""
     bar = GetScalarBar(lut, view)
     bar.Title = title
     bar.ComponentTitle = ""
     bar.TitleBold = 1
     bar.ScalarBarLength = 0.7
     bar.WindowLocation = "Any Location"
-    bar.Orientation = "Vertical"
-    bar.Position = [0.77, 0.13]
+    bar.Orientation = "Horizontal" if horizontal else "Vertical"
+    bar.Position = [0.15, 0.05] if horizontal else [0.77, 0.13]
     ticks, label_format = nice_ticks(lo, hi)
     bar.AddRangeLabels = 1
     bar.RangeLabelFormat = label_format
@@ -133,19 +138,32 @@ def fit_text(view, width):
             representation.FontSize = max(8, round(26 * factor))
 
 
-def top_view(view, bounds, aspect):
+def top_view(view, bounds, aspect, sector=360.0, radii=None):
     """Camera on +z looking down at the annulus, x to the right, y up, parallel projection;
-    the annulus on the left of a view of width/height = aspect, the colour bar on the right."""
+    the annulus on the left of a view of width/height = aspect, the colour bar on the right.
+    With a sector of less than 360 degrees: that sector at the top of the annulus, between
+    the radii, filling the width of the view above a horizontal colour bar."""
     view.InteractionMode = "2D"
     view.OrientationAxesVisibility = 0
+    view.CameraViewUp = [0.0, 1.0, 0.0]
+    view.CameraParallelProjection = 1
+    if sector < 360.0 and radii is not None:
+        r_in, r_out = radii
+        half = math.radians(0.5 * min(sector, 180.0))
+        half_height = max(1.02 * r_out * math.sin(half) / aspect,
+                          (r_out - r_in * math.cos(half)) / (2.0 * 0.62))
+        # The sector's top 12 % below the top of the view (the title above it).
+        cy = r_out + 0.24 * half_height - half_height
+        view.CameraFocalPoint = [0.0, cy, 0.0]
+        view.CameraPosition = [0.0, cy, 4.0 * r_out]
+        view.CameraParallelScale = half_height
+        return
     cx, cy = 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])
     radius = 0.5 * max(bounds[1] - bounds[0], bounds[3] - bounds[2])
     half_height = max(1.1 * radius, 1.45 * radius / aspect)
     shift = half_height * aspect - 1.04 * radius
     view.CameraFocalPoint = [cx + shift, cy, 0.0]
     view.CameraPosition = [cx + shift, cy, 4.0 * radius]
-    view.CameraViewUp = [0.0, 1.0, 0.0]
-    view.CameraParallelProjection = 1
     view.CameraParallelScale = half_height
 
 
@@ -166,7 +184,7 @@ def coloured(source, view, array, subdivision):
     return display
 
 
-def flux_overlay(source, view, kind):
+def flux_overlay(source, view, kind, sector=360.0):
     """volume_flux on the pressure view: arrows on rings through the annulus, their length
     proportional to the flux, or stream lines seeded on a radius."""
     flux_max = source.PointData["volume_flux"].GetRange(-1)[1]
@@ -175,7 +193,8 @@ def flux_overlay(source, view, kind):
     r_in, r_out = annulus_radii(source)
     band = r_out - r_in
     if kind == "glyphs":
-        rings, per_ring = 3, 40
+        # About 40 arrows across the view along a ring, whatever the sector shown.
+        rings, per_ring = (3, 40) if sector >= 360.0 else (5, int(round(40 * 360.0 / sector)))
         seeds = Disk(InnerRadius=r_in + 0.18 * band, OuterRadius=r_out - 0.18 * band,
                      RadialResolution=rings - 1, CircumferentialResolution=per_ring)
         probe = ResampleWithDataset(SourceDataArrays=source, DestinationMesh=seeds)
@@ -282,9 +301,9 @@ def build(args):
     lut.ApplyPreset("Inferno (matplotlib)", True)
     lut.RescaleTransferFunction(p_lo * scale, p_hi * scale)
     lut.AutomaticRescaleRangeMode = "Never"
-    style_bar(lut, p_view, "pressure [%s]" % unit, p_lo * scale, p_hi * scale)
+    style_bar(lut, p_view, "pressure [%s]" % unit, p_lo * scale, p_hi * scale, args.sector < 360.0)
     if args.flux != "none" and "volume_flux" in names:
-        flux_overlay(reader, p_view, args.flux)
+        flux_overlay(reader, p_view, args.flux, args.sector)
     title(p_view, "pressure" + (" and volume flux" if args.flux != "none" else ""))
 
     # Film thickness in micrometres, sequential over the range of the data.
@@ -294,7 +313,7 @@ def build(args):
     h_lo, h_hi = film.PointData["film_thickness_um"].GetRange()
     lut.RescaleTransferFunction(h_lo, h_hi)
     lut.AutomaticRescaleRangeMode = "Never"
-    style_bar(lut, h_view, "film thickness [\u00b5m]", h_lo, h_hi)
+    style_bar(lut, h_view, "film thickness [\u00b5m]", h_lo, h_hi, args.sector < 360.0)
     title(h_view, "film thickness")
 
     # Liquid fraction on 0..1: cavity grey, full film blue (optionally the cavity's edge).
@@ -305,7 +324,7 @@ def build(args):
         lut.RGBPoints = CAVITY_RGB_POINTS
         lut.AutomaticRescaleRangeMode = "Never"
         GetOpacityTransferFunction("liquid_fraction").RescaleTransferFunction(0.0, 1.0)
-        style_bar(lut, s_view, "liquid fraction [-]", 0.0, 1.0)
+        style_bar(lut, s_view, "liquid fraction [-]", 0.0, 1.0, args.sector < 360.0)
         if args.cavity_edge and "cavitated" in names:
             edge = Contour(Input=reader, ContourBy=["POINTS", "cavitated"], Isosurfaces=[0.5])
             edge_display = Show(edge, s_view)
@@ -322,12 +341,13 @@ def build(args):
         display.NonlinearSubdivisionLevel = args.subdivision
         display.ColorArrayName = [None, '']
 
+    radii = annulus_radii(reader) if args.sector < 360.0 else None
     for view in views:
         Render(view)
         width, height = view.ViewSize
         if args.png or not (width > 0 and height > 0):
             width, height = args.size[0] / 3.0, args.size[1]
-        top_view(view, bounds, width / height)
+        top_view(view, bounds, width / height, args.sector, radii)
         fit_text(view, width)
     SetActiveView(p_view)
     return layout, views

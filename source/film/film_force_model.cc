@@ -60,6 +60,7 @@ FilmThickness FilmState::apply(FilmThickness base) const
   base.tilt_rate_x = tilt_rate_x;
   base.tilt_rate_y = tilt_rate_y;
   base.coning = coning;
+  base.time = time; // the t of a film expression
   return base;
 }
 

@@ -2,7 +2,9 @@
 // analytic film term gives the same loads to the solver tolerance; its time derivative is the
 // squeeze; a formula that touches down, does not parse or names an unknown variable is refused
 // with one line; the empty default is exactly the analytic film.
+#include <sealfe/coefficients/finite_element_film.h>
 #include <sealfe/film/film_expression.h>
+#include <sealfe/film/film_force_model.h>
 #include <sealfe/film/film_settings.h>
 #include <sealfe/film/reynolds_solver.h>
 
@@ -111,6 +113,27 @@ TEST(FilmExpression, TimeDerivativeIsTheSqueeze)
   expect_same_loads(squeezed, formula, 1e-9);
   // and the squeeze does something (the test is not vacuous)
   EXPECT_GT(std::abs(squeezed.force_z - velocity.force_z), 1e-3 * std::abs(velocity.force_z));
+}
+
+// The dynamics passes its time to the film: a formula v t evaluated by the level-2 film at a state
+// of time T is the film offset by v T and closing at v (what a transient sees at time T).
+TEST(FilmExpression, TheDynamicsStateCarriesTheTime)
+{
+  const double v = 1e-4, T = 5e-3;
+  const FilmSettings formula = tilted(
+      " set Coning = 1e-3\n set Film expression = v*t\n set Film expression constants = v=1e-4\n",
+      Cavitation::none);
+  FilmState state = FilmState::from(formula.geometry, formula.conditions);
+  state.time = T;
+  const FilmLoads at_t = FiniteElementFilm(formula, MPI_COMM_WORLD).loads(state);
+  FilmSettings moved = tilted(" set Coning = 1e-3\n", Cavitation::none);
+  moved.geometry.axial_offset = v * T;
+  moved.geometry.axial_velocity = v;
+  expect_same_loads(solve(moved), at_t, 1e-9);
+  // v T = 0.5 um changes the loads (the test is not vacuous)
+  EXPECT_GT(
+      std::abs(at_t.force_z - solve(tilted(" set Coning = 1e-3\n", Cavitation::none)).force_z),
+      1e-2 * std::abs(at_t.force_z));
 }
 
 // Derivatives by centred differences: a formula with known derivatives.

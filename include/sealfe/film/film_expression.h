@@ -29,6 +29,7 @@ private:
   std::string text;
   mutable dealii::FunctionParser<2> parser; // variables x, y, t; r and theta rewritten
   double r_step;
+  bool time_dependent; // the formula names t
 };
 
 } // namespace sealfe

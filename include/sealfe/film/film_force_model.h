@@ -51,7 +51,7 @@ struct FilmState
 
   /// The state of a film and an operating point (time 0).
   static FilmState from(const FilmThickness &film, const OperatingConditions &conditions);
-  /// `base` with this state's position, velocity and coning written into it.
+  /// `base` with this state's position, velocity, coning and time written into it.
   FilmThickness apply(FilmThickness base) const;
   /// `base` with this state's speeds and pressures written into it.
   OperatingConditions apply(OperatingConditions base) const;
