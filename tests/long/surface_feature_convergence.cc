@@ -189,7 +189,8 @@ TEST(SurfaceFeaturesLong, DimplesOnTheFittedMesh)
     else
     {
       // order 1 for the cavity (measured 0.95, 0.98); the force is still pre-asymptotic at
-      // these sizes (orders 0.55, 0.72 up to 620 000 dofs): converging
+      // these sizes (orders 0.55, 0.72 up to 620 000 dofs; 1.27 with one refinement more, 2.5e6
+      // dofs, too large for this test): converging
       EXPECT_GT(orders(runs, &FilmLoads::cavitated_fraction).back(), 0.8);
       EXPECT_GT(orders(runs, &FilmLoads::force_z).back(), 0.3);
     }
