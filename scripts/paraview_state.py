@@ -72,7 +72,10 @@ def parse(argv):
                         "on the whole annulus (default 360)")
     parser.add_argument("--last", action="store_true",
                         help="show the last time of a .pvd (default: the first)")
-    return parser.parse_args(argv)
+    args = parser.parse_args(argv)
+    if not 0.0 < args.sector <= 360.0:
+        parser.error("--sector must be in (0, 360] degrees (got %g)" % args.sector)
+    return args
 
 
 def pressure_unit(p_max):

@@ -28,26 +28,22 @@ bool is_name_char(const char c)
   return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
 
-/// FunctionParser<2> knows x, y and t only: rewrite the names r and theta (whole identifiers,
-/// so "rho" or "theta0" stay) as functions of x and y.
-std::string polar_to_cartesian(const std::string &formula)
+/// Walks the formula token by token: `name(identifier)` for each whole identifier, `other(text)`
+/// for everything else (a number with its exponent, "1e-6", is one token: its e is not a name).
+template <typename Name, typename Other>
+void for_each_token(const std::string &formula, Name name, Other other)
 {
-  std::string out;
   for (std::size_t i = 0; i < formula.size();)
   {
+    std::size_t j = i;
     if (is_name_start(formula[i]))
     {
-      std::size_t j = i;
       while (j < formula.size() && is_name_char(formula[j]))
         ++j;
-      const std::string name = formula.substr(i, j - i);
-      out += name == "r" ? "sqrt(x*x+y*y)" : name == "theta" ? "atan2(y,x)" : name;
-      i = j;
+      name(formula.substr(i, j - i));
     }
     else if (std::isdigit(static_cast<unsigned char>(formula[i])) || formula[i] == '.')
     {
-      // a number, with its exponent ("1e-6"): the e is not a name
-      std::size_t j = i;
       while (j < formula.size() &&
              (std::isdigit(static_cast<unsigned char>(formula[j])) || formula[j] == '.'))
         ++j;
@@ -63,31 +59,36 @@ std::string polar_to_cartesian(const std::string &formula)
             ++j;
         }
       }
-      out += formula.substr(i, j - i);
-      i = j;
+      other(formula.substr(i, j - i));
     }
     else
-      out += formula[i++];
+      other(formula.substr(i, ++j - i));
+    i = j;
   }
+}
+
+/// FunctionParser<2> knows x, y and t only: rewrite the names r and theta (whole identifiers,
+/// so "rho" or "theta0" stay) as functions of x and y.
+std::string polar_to_cartesian(const std::string &formula)
+{
+  std::string out;
+  for_each_token(
+      formula,
+      [&](const std::string &name) {
+        out += name == "r" ? "sqrt(x*x+y*y)" : name == "theta" ? "atan2(y,x)" : name;
+      },
+      [&](const std::string &text) { out += text; });
   return out;
 }
 
 /// Whether the identifier `name` occurs in the formula (whole identifiers, as above).
 bool mentions(const std::string &formula, const std::string &name)
 {
-  for (std::size_t i = 0; i < formula.size();)
-    if (is_name_start(formula[i]) && (i == 0 || !is_name_char(formula[i - 1])))
-    {
-      std::size_t j = i;
-      while (j < formula.size() && is_name_char(formula[j]))
-        ++j;
-      if (formula.compare(i, j - i, name) == 0 && j - i == name.size())
-        return true;
-      i = j;
-    }
-    else
-      ++i;
-  return false;
+  bool found = false;
+  for_each_token(
+      formula, [&](const std::string &n) { found = found || n == name; },
+      [](const std::string &) {});
+  return found;
 }
 
 std::map<std::string, double> parse_constants(const std::string &list)

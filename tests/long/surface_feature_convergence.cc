@@ -182,17 +182,21 @@ TEST(SurfaceFeaturesLong, DimplesOnTheFittedMesh)
     if (model == "none")
     {
       // the force itself is the error: order from successive values
-      for (std::size_t k = 2; k < runs.size(); ++k)
+      for (std::size_t k = 1; k < runs.size(); ++k)
         EXPECT_GT(std::log2(std::abs(runs[k - 1].loads.force_z / runs[k].loads.force_z)), 1.8);
       EXPECT_GT(orders(runs, &FilmLoads::friction_torque).back(), 1.8);
     }
     else
     {
-      // order 1 for the cavity (measured 0.95, 0.98); the force is still pre-asymptotic at
+      // order 1 for the cavity (measured 0.95, 0.98). The force is still pre-asymptotic at
       // these sizes (orders 0.55, 0.72 up to 620 000 dofs; 1.27 with one refinement more, 2.5e6
-      // dofs, too large for this test): converging
+      // dofs, too large for this test), so only convergence is claimed: each of the last two
+      // changes of the force is smaller than the one before (an order > 0), no rate.
       EXPECT_GT(orders(runs, &FilmLoads::cavitated_fraction).back(), 0.8);
-      EXPECT_GT(orders(runs, &FilmLoads::force_z).back(), 0.3);
+      auto change = [&](const std::size_t k)
+      { return std::abs(runs[k].loads.force_z - runs[k - 1].loads.force_z); };
+      for (std::size_t k = runs.size() - 2; k < runs.size(); ++k)
+        EXPECT_LT(change(k), change(k - 1));
     }
   }
   std::filesystem::remove(file);
