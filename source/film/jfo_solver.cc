@@ -853,6 +853,7 @@ void JFOSolver::solve()
   s.cavitation_iterations = it + active_set_rounds;
   s.jfo_newton_steps = it;
   s.jfo_active_set_rounds = active_set_rounds;
+  s.jfo_band_rounds = band_rounds;
   s.cavitation_residual = std::max(mass_residual, complementarity_residual);
   if (!converged)
   {
