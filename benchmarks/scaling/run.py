@@ -73,6 +73,7 @@ end
             "newton_steps": s.get("cavitation", {}).get("newton_steps"),
             "active_set_rounds": s.get("cavitation", {}).get("active_set_rounds"),
             "coarse_factorizations": s.get("cavitation", {}).get("coarse_level_factorizations"),
+            "band_factorizations": s.get("cavitation", {}).get("band_factorizations"),
             "force_z": s["force_z"], "moment_x": s["moment_x"]}
 
 

@@ -305,6 +305,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
       {"coarse_level_iterations", solver.coarse_nonlinear_iterations()},
       {"newton_steps", solver.newton_steps()},
       {"active_set_rounds", solver.active_set_rounds()},
+      {"band_factorizations", solver.band_rounds()},
       {"coarse_level_factorizations", solver.coarse_level_factorizations()},
       {"coarse_level_krylov_iterations", solver.coarse_level_krylov_iterations()},
       {"final_residual", solver.nonlinear_residual()}};

@@ -144,86 +144,225 @@ bool JFOSolver::prepare_global_matrices()
   return true;
 }
 
+namespace
+{
+/// The local values of a one-rank Trilinos vector whose entries are the dofs 0 .. n-1 in order
+/// (owned or ghosted: on one rank both hold every dof); null otherwise.
+const double *plain_values(const TrilinosWrappers::MPI::Vector &x, const std::size_t n)
+{
+  // deal.II lists the indices of its maps explicitly (sorted), so the map is the identity when it
+  // holds n entries from 0 to n - 1
+  const auto &e = x.trilinos_vector();
+  const auto &map = e.Map();
+  if (n == 0 || static_cast<std::size_t>(map.NumMyElements()) != n || map.MinMyGID64() != 0 ||
+      map.MaxMyGID64() != static_cast<long long>(n) - 1 || map.GID64(0) != 0)
+    return nullptr;
+  return e[0];
+}
+} // namespace
+
+bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, const bool with_rhs)
+{
+  // residual = F - A p - G v with p = p_cav + P a; the active-set right-hand side adds back the
+  // term of the unknown each node keeps: F - A p_cav - sum_j (a_j >= v_j ? P A_:j a_j : G_:j v_j)
+  // (the cell-by-cell assemble() below, summed in another order). The constrained dofs' terms
+  // are constant during a solve (their a and v never change) and sit in constant_residual and
+  // constant_rhs, computed once by a loop over the cells.
+  if (global_matrices != 1 || assemble_by_cells)
+    return false;
+  const std::size_t n = s.dof_handler.n_dofs();
+  const double *pa = plain_values(a, n), *pv = plain_values(v, n);
+  double *res = const_cast<double *>(plain_values(residual, n));
+  double *rhs = const_cast<double *>(plain_values(newton_rhs, n));
+  if (!pa || !pv || !res || !rhs)
+    return false;
+  const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
+  if (row_gid.empty())
+  {
+    row_gid.resize(M.NumMyRows());
+    for (int r = 0; r < M.NumMyRows(); ++r)
+      row_gid[r] = M.RowMap().GID64(r);
+    column_gid.resize(M.NumMyCols());
+    for (int c = 0; c < M.NumMyCols(); ++c)
+      column_gid[c] = M.ColMap().GID64(c);
+    constrained.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      constrained[i] = s.homogeneous_constraints.is_constrained(i);
+  }
+  bool same_constrained_values = !constant_residual.empty();
+  for (std::size_t i = 0, k = 0; i < n && same_constrained_values; ++i)
+    if (constrained[i])
+    {
+      same_constrained_values = constrained_a[k] == pa[i] && constrained_v[k] == pv[i];
+      ++k;
+    }
+  if (!same_constrained_values)
+  {
+    constrained_a.clear();
+    constrained_v.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (constrained[i])
+      {
+        constrained_a.push_back(pa[i]);
+        constrained_v.push_back(pv[i]);
+      }
+    const unsigned int dofs_per_cell = s.fe->n_dofs_per_cell();
+    const double P = s.pressure_scale;
+    Vector<double> r(dofs_per_cell), b(dofs_per_cell);
+    std::vector<types::global_dof_index> dofs(dofs_per_cell);
+    VectorType c_res(s.locally_owned_dofs, s.mpi_communicator),
+        c_rhs(s.locally_owned_dofs, s.mpi_communicator);
+    for (const auto &cell : s.dof_handler.active_cell_iterators())
+    {
+      const auto k = cell->active_cell_index();
+      const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        r(i) = b(i) = cell_F[k](i);
+        for (unsigned int j = 0; j < dofs_per_cell; ++j)
+        {
+          const auto J = dofs[j];
+          const double a_j = constrained[J] ? pa[J] : 0.0, v_j = constrained[J] ? pv[J] : 0.0;
+          r(i) -= A(i, j) * (s.cavitation.pressure + P * a_j) + G(i, j) * v_j;
+          b(i) -=
+              A(i, j) * s.cavitation.pressure + (a_j >= v_j ? P * A(i, j) * a_j : G(i, j) * v_j);
+        }
+      }
+      s.homogeneous_constraints.distribute_local_to_global(r, dofs, c_res);
+      s.homogeneous_constraints.distribute_local_to_global(b, dofs, c_rhs);
+    }
+    c_res.compress(VectorOperation::add);
+    c_rhs.compress(VectorOperation::add);
+    const double *cr = plain_values(c_res, n), *cb = plain_values(c_rhs, n);
+    constant_residual.assign(cr, cr + n);
+    constant_rhs.assign(cb, cb + n);
+  }
+  std::vector<char> keep_pressure;
+  if (with_rhs)
+  {
+    keep_pressure.resize(n);
+    for (std::size_t j = 0; j < n; ++j)
+      keep_pressure[j] = pa[j] >= pv[j];
+  }
+  std::size_t position = 0;
+  for (int row = 0; row < M.NumMyRows(); ++row)
+  {
+    int entries;
+    double *values;
+    int *columns;
+    M.ExtractMyRowView(row, entries, values, columns);
+    const auto i = row_gid[row];
+    if (constrained[i])
+    {
+      res[i] = 0;
+      if (with_rhs)
+        rhs[i] = 0;
+      position += entries;
+      continue;
+    }
+    // constrained columns hold zeros in the condensed P A and G (their terms are constant)
+    double r = constant_residual[i], b = constant_rhs[i];
+    for (int e = 0; e < entries; ++e, ++position)
+    {
+      const auto j = column_gid[columns[e]];
+      const double pa_e = global_PA[position] * pa[j], g_e = global_G[position] * pv[j];
+      r -= pa_e + g_e;
+      if (with_rhs)
+        b -= keep_pressure[j] ? pa_e : g_e;
+    }
+    res[i] = r;
+    if (with_rhs)
+      rhs[i] = b;
+  }
+  return true;
+}
+
 double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool with_jacobian,
                            const bool active_set_step)
 {
   // the global matrices are prepared outside this timer (in "jfo cell matrices")
   const bool select_columns = with_jacobian && active_set_step && prepare_global_matrices();
   TimerOutput::Scope timer_scope(s.timer, "jfo assembly");
+  const bool by_products =
+      (select_columns || !with_jacobian) && assemble_by_products(a, v, with_jacobian);
   const unsigned int n = s.fe->n_dofs_per_cell();
   FullMatrix<double> J(n, n);
   Vector<double> R(n), correction(n), local_a(n), local_v(n), local_p(n);
   std::vector<types::global_dof_index> dofs(n);
   const double P = s.pressure_scale;
 
-  if (with_jacobian)
+  if (with_jacobian && !by_products)
   {
     if (!select_columns)
       s.system_matrix = 0;
     newton_rhs = 0;
   }
-  residual = 0;
-  for (const auto &cell : s.dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
-    {
-      const auto k = cell->active_cell_index();
-      const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
-      cell->get_dof_indices(dofs);
-      cell->get_dof_values(a, local_a);
-      cell->get_dof_values(v, local_v);
-      for (unsigned int j = 0; j < n; ++j)
-        local_p(j) = s.cavitation.pressure + P * local_a(j);
-      A.vmult(R, local_p);
-      R -= cell_F[k];
-      G.vmult_add(R, local_v);
-      R *= -1.0; // residual vector holds -R
-      s.homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
-      if (with_jacobian)
+  if (!by_products)
+    residual = 0;
+  if (!by_products)
+    for (const auto &cell : s.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
       {
-        correction = 0;
+        const auto k = cell->active_cell_index();
+        const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
+        cell->get_dof_indices(dofs);
+        cell->get_dof_values(a, local_a);
+        cell->get_dof_values(v, local_v);
         for (unsigned int j = 0; j < n; ++j)
+          local_p(j) = s.cavitation.pressure + P * local_a(j);
+        A.vmult(R, local_p);
+        R -= cell_F[k];
+        G.vmult_add(R, local_v);
+        R *= -1.0; // residual vector holds -R
+        s.homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
+        if (with_jacobian)
         {
-          const FischerBurmeister fb(local_a(j), local_v(j));
-          if (active_set_step)
+          correction = 0;
+          for (unsigned int j = 0; j < n; ++j)
           {
-            // Active-set step: the node keeps the larger of its two unknowns, the other is set
-            // to zero (its current value moves to the right-hand side).
-            const bool keep_pressure = local_a(j) >= local_v(j);
-            for (unsigned int i = 0; i < n; ++i)
+            const FischerBurmeister fb(local_a(j), local_v(j));
+            if (active_set_step)
             {
-              if (!select_columns) // else the global matrix takes its columns whole
-                J(i, j) = keep_pressure ? P * A(i, j) : G(i, j);
-              correction(i) += keep_pressure ? G(i, j) * local_v(j) : P * A(i, j) * local_a(j);
+              // Active-set step: the node keeps the larger of its two unknowns, the other is set
+              // to zero (its current value moves to the right-hand side).
+              const bool keep_pressure = local_a(j) >= local_v(j);
+              for (unsigned int i = 0; i < n; ++i)
+              {
+                if (!select_columns) // else the global matrix takes its columns whole
+                  J(i, j) = keep_pressure ? P * A(i, j) : G(i, j);
+                correction(i) += keep_pressure ? G(i, j) * local_v(j) : P * A(i, j) * local_a(j);
+              }
+            }
+            else if (fb.keeps_pressure())
+            {
+              const double ratio = fb.d_a / fb.d_b, shift = fb.value / fb.d_b;
+              for (unsigned int i = 0; i < n; ++i)
+              {
+                J(i, j) = P * A(i, j) - G(i, j) * ratio;
+                correction(i) += G(i, j) * shift;
+              }
+            }
+            else
+            {
+              const double ratio = fb.d_b / fb.d_a, shift = fb.value / fb.d_a;
+              for (unsigned int i = 0; i < n; ++i)
+              {
+                J(i, j) = G(i, j) - P * A(i, j) * ratio;
+                correction(i) += P * A(i, j) * shift;
+              }
             }
           }
-          else if (fb.keeps_pressure())
-          {
-            const double ratio = fb.d_a / fb.d_b, shift = fb.value / fb.d_b;
-            for (unsigned int i = 0; i < n; ++i)
-            {
-              J(i, j) = P * A(i, j) - G(i, j) * ratio;
-              correction(i) += G(i, j) * shift;
-            }
-          }
+          R += correction;
+          if (select_columns)
+            s.homogeneous_constraints.distribute_local_to_global(R, dofs, newton_rhs);
           else
-          {
-            const double ratio = fb.d_b / fb.d_a, shift = fb.value / fb.d_a;
-            for (unsigned int i = 0; i < n; ++i)
-            {
-              J(i, j) = G(i, j) - P * A(i, j) * ratio;
-              correction(i) += P * A(i, j) * shift;
-            }
-          }
+            s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
+                                                                 newton_rhs);
         }
-        R += correction;
-        if (select_columns)
-          s.homogeneous_constraints.distribute_local_to_global(R, dofs, newton_rhs);
-        else
-          s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
-                                                               newton_rhs);
       }
-    }
-  residual.compress(VectorOperation::add);
+  if (!by_products)
+    residual.compress(VectorOperation::add);
   if (with_jacobian)
   {
     if (select_columns)
@@ -251,7 +390,8 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
     }
     else
       s.system_matrix.compress(VectorOperation::add);
-    newton_rhs.compress(VectorOperation::add);
+    if (!by_products)
+      newton_rhs.compress(VectorOperation::add);
   }
   double fb_squared = 0;
   for (const auto i : s.locally_owned_dofs)
@@ -725,6 +865,7 @@ void JFOSolver::solve()
   s.cavitation_iterations = it + active_set_rounds;
   s.jfo_newton_steps = it;
   s.jfo_active_set_rounds = active_set_rounds;
+  s.jfo_band_rounds = band_rounds;
   s.cavitation_residual = std::max(mass_residual, complementarity_residual);
   if (!converged)
   {

@@ -27,6 +27,9 @@ public:
   JFOSolver(ReynoldsSolver &solver, double flow_scale);
   /// Throws std::runtime_error if the iteration does not converge.
   void solve();
+  /// Tests: assemble every residual and right-hand side cell by cell (as before the products of
+  /// the global matrices were used), to compare the two.
+  static inline bool assemble_by_cells = false;
 
 private:
   /// Cell matrices A, G, F (state independent): once per solve, reused by every iteration.
@@ -39,6 +42,10 @@ private:
   /// Dirichlet constraints), so that an active-set Jacobian is a column selection of the two;
   /// false (and the cell-by-cell assembly is used) otherwise.
   bool prepare_global_matrices();
+  /// The residual (and, with `with_rhs`, the right-hand side of the active-set system) at (a, v)
+  /// as products of the global P A and G instead of a loop over the cells; false (nothing done)
+  /// when the global matrices are not there or the vectors are not the plain one-rank layout.
+  bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs);
   /// Start from the converged state of the mesh twice as coarse, else the clipped full film.
   void warm_start();
   /// Start values from the mesh-sequencing solver (a coarse ReynoldsSolver with a copy of the
@@ -72,6 +79,13 @@ private:
   /// whether they can be used (0: not tried yet, 1: yes, -1: no).
   std::vector<double> global_PA, global_G;
   int global_matrices = 0;
+  /// For assemble_by_products (by global index): the residual and active-set right-hand side at
+  /// a = v = 0 on the unconstrained dofs (F, the cavitation pressure and the constrained dofs'
+  /// fixed values), which constrained dofs, and the constrained values they were computed with.
+  std::vector<double> constant_residual, constant_rhs;
+  std::vector<char> constrained;
+  std::vector<double> constrained_a, constrained_v;
+  std::vector<long long> row_gid, column_gid;
 
   VectorType a_owned, v_owned, a, v, residual, newton_rhs, w, da, dv, trial_a, trial_v, ta, tv;
   VectorType best_a, best_v;

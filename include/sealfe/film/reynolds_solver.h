@@ -136,6 +136,9 @@ public:
   /// is nonlinear_iterations()).
   unsigned int newton_steps() const { return jfo_newton_steps; }
   unsigned int active_set_rounds() const { return jfo_active_set_rounds; }
+  /// Of those, the band rounds: each a sparse direct factorisation of a principal submatrix (the
+  /// dofs near the last set changes), not counted in linear_solver_statistics().
+  unsigned int band_rounds() const { return jfo_band_rounds; }
   /// Factorisations (or AMG set-ups) and Krylov iterations of all mesh-sequencing levels.
   unsigned int coarse_level_factorizations() const { return coarse_factorizations; }
   unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
@@ -243,7 +246,7 @@ private:
   unsigned int cavitation_iterations = 0;
   unsigned int coarse_iterations = 0; // Newton iterations spent on the mesh-sequencing levels
   unsigned int coarse_factorizations = 0, coarse_krylov_iterations = 0;
-  unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0;
+  unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0, jfo_band_rounds = 0;
   unsigned int current_coarsening = 0;
   double cavitation_residual = 0;
   unsigned int last_iterations = 0;
