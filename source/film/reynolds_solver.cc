@@ -399,11 +399,15 @@ void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
   A = 0;
   G = 0;
   F = 0;
+  // K grad phi_j once per point, not once per (i, j) pair (the same products, so the same bits)
+  std::vector<Tensor<1, 2>> K_grad(n);
   for (const unsigned int q : fe_values.quadrature_point_indices())
   {
     const LocalFilm f = local_film(fe_values.quadrature_point(q));
     const Tensor<2, 2> K = equation_scale * f.K;
     const double JxW = fe_values.JxW(q);
+    for (unsigned int j = 0; j < n; ++j)
+      K_grad[j] = K * fe_values.shape_grad(j, q);
     for (unsigned int i = 0; i < n; ++i)
     {
       const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
@@ -412,7 +416,7 @@ void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
       F(i) += equation_scale * (c_grad_i - f.squeeze * vi) * JxW;
       for (unsigned int j = 0; j < n; ++j)
       {
-        A(i, j) += (gi * (K * fe_values.shape_grad(j, q))) * JxW;
+        A(i, j) += (gi * K_grad[j]) * JxW;
         if (with_void)
         {
           // div(phi_j c) = c . grad phi_j + phi_j div c: the transported void content
