@@ -298,6 +298,28 @@ struct FilmMultigrid::Data
   CoarseDirect coarse;
   std::unique_ptr<Multigrid<VectorType>> multigrid;
   std::unique_ptr<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>> preconditioner;
+  // The V-cycle's level vectors, allocated once per mesh (fine_is_system: see v_cycle).
+  MGLevelObject<VectorType> defect, solution, residual;
+
+  /// deal.II's Multigrid::level_v_step on persistent level vectors: PreconditionMG and
+  /// Multigrid re-create every level vector (with new Trilinos maps) at each V-cycle, and the
+  /// Chebyshev smoothers then re-allocate their own work vectors too.
+  void v_step(const unsigned int l)
+  {
+    if (l == 0)
+    {
+      coarse(0, solution[0], defect[0]);
+      return;
+    }
+    smoother.apply(l, solution[l], defect[l]);
+    operators.vmult(l, residual[l], solution[l]);
+    residual[l].sadd(-1.0, 1.0, defect[l]);
+    defect[l - 1] = 0;
+    transfer->restrict_and_add(l, defect[l - 1], residual[l]);
+    v_step(l - 1);
+    transfer->prolongate_and_add(l, solution[l], solution[l - 1]);
+    smoother.smooth(l, solution[l], defect[l]);
+  }
 };
 
 FilmMultigrid::FilmMultigrid() = default;
@@ -489,6 +511,18 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
   }
   data->coarse.direct.factorize(*data->operators.matrices[0]);
 
+  if (data->fine_is_system && data->defect.max_level() != fine)
+  {
+    data->defect.resize(0, fine);
+    data->solution.resize(0, fine);
+    data->residual.resize(0, fine);
+    for (unsigned int l = 0; l < n_levels; ++l)
+    {
+      data->defect[l].reinit(dof_handler->locally_owned_mg_dofs(l), tria.get_communicator());
+      data->solution[l].reinit(data->defect[l]);
+      data->residual[l].reinit(data->defect[l]);
+    }
+  }
   data->multigrid = std::make_unique<Multigrid<VectorType>>(
       data->operators, data->coarse, *data->transfer, data->smoother, data->smoother);
   data->preconditioner =
@@ -498,7 +532,16 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
 
 void FilmMultigrid::vmult(VectorType &dst, const VectorType &src) const
 {
-  data->preconditioner->vmult(dst, src);
+  if (!data->fine_is_system)
+  {
+    data->preconditioner->vmult(dst, src);
+    return;
+  }
+  // The finest level and the system have the same owned dofs in the same order.
+  const unsigned int fine = data->defect.max_level();
+  std::copy(src.begin(), src.end(), data->defect[fine].begin());
+  data->v_step(fine);
+  std::copy(data->solution[fine].begin(), data->solution[fine].end(), dst.begin());
 }
 
 } // namespace sealfe

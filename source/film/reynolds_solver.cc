@@ -202,14 +202,13 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
     if (!multigrid.is_setup())
       multigrid.setup(dof_handler, *mapping,
                       {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
-    linear_system_solver.set_multigrid(
-        &multigrid,
-        [this]()
-        {
-          multigrid.prepare(
-              system_matrix, [this](const Point<2> &x) { return equation_scale * local_film(x).K; },
-              polynomial_degree + 2, multigrid_parameters);
-        });
+    // the level matrices need K alone (pressure_flow: local_film's K without the rest)
+    auto prepare = [this]()
+    {
+      const auto K = [this](const Point<2> &x) { return equation_scale * pressure_flow(x); };
+      multigrid.prepare(system_matrix, K, polynomial_degree + 2, multigrid_parameters);
+    };
+    linear_system_solver.set_multigrid(&multigrid, prepare);
   }
   else
     linear_system_solver.set_multigrid(nullptr, {});
@@ -336,6 +335,24 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
   return f;
 }
 
+Tensor<2, 2> ReynoldsSolver::pressure_flow(const Point<2> &x) const
+{
+  // local_film(x).K by the same expressions, without the film's derivatives, velocities and
+  // contact: what the multigrid's level matrices need at every level quadrature point.
+  const double r = x.norm(), theta = std::atan2(x[1], x[0]);
+  const double h = film.value(r, theta), mu = conditions.viscosity;
+  if (flow_factors.is_smooth())
+  {
+    const double k = h * h * h / (12 * mu);
+    return k * unit_symmetric_tensor<2>();
+  }
+  const Tensor<1, 2> er({x[0] / r, x[1] / r}), et({-x[1] / r, x[0] / r});
+  const auto ff = flow_factors.film_factors(h);
+  const double h_flow = std::max(h, 0.5 * flow_factors.composite_roughness());
+  const double k = h_flow * h_flow * h_flow / (12 * mu);
+  return k * (ff.phi_r.value * outer_product(er, er) + ff.phi_theta.value * outer_product(et, et));
+}
+
 double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator &cell) const
 {
   // Streamline-diffusion parameter for the transport of the void fraction in the cavity: full
@@ -382,11 +399,15 @@ void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
   A = 0;
   G = 0;
   F = 0;
+  // K grad phi_j once per point, not once per (i, j) pair (the same products, so the same bits)
+  std::vector<Tensor<1, 2>> K_grad(n);
   for (const unsigned int q : fe_values.quadrature_point_indices())
   {
     const LocalFilm f = local_film(fe_values.quadrature_point(q));
     const Tensor<2, 2> K = equation_scale * f.K;
     const double JxW = fe_values.JxW(q);
+    for (unsigned int j = 0; j < n; ++j)
+      K_grad[j] = K * fe_values.shape_grad(j, q);
     for (unsigned int i = 0; i < n; ++i)
     {
       const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
@@ -395,7 +416,7 @@ void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
       F(i) += equation_scale * (c_grad_i - f.squeeze * vi) * JxW;
       for (unsigned int j = 0; j < n; ++j)
       {
-        A(i, j) += (gi * (K * fe_values.shape_grad(j, q))) * JxW;
+        A(i, j) += (gi * K_grad[j]) * JxW;
         if (with_void)
         {
           // div(phi_j c) = c . grad phi_j + phi_j div c: the transported void content

@@ -103,3 +103,30 @@ TEST(FilmMultigrid, AutoPicksItAboveTheDirectLimitOnTheBuiltInMesh)
   EXPECT_EQ(FilmLinearSolver::choose(FilmSettings::LinearSolver::cg_amg, true, big, true),
             M::cg_amg);
 }
+
+TEST(FilmMultigrid, LevelCoefficientIsTheFilmsPressureFlowTensor)
+{
+  // The level matrices take K from ReynoldsSolver::pressure_flow, a cheaper evaluation of
+  // local_film(x).K by the same expressions: equal to the last bit, smooth and rough faces
+  // (Patir & Cheng, sigma = 0.5 um, transverse roughness gamma = 1/3: K anisotropic; the film
+  // is 1.1 to 14 roughness heights).
+  for (const bool rough : {false, true})
+  {
+    const FilmSettings settings = tilted_seal(2, 8, 32, 0, FilmSettings::LinearSolver::direct);
+    ReynoldsSolver s(settings, MPI_COMM_WORLD);
+    if (rough)
+      s.flow_factors = FlowFactors(FlowFactors::Model::patir_cheng, 0.5e-6, 1. / 3);
+    s.run();
+    const double ri = settings.geometry.inner_radius, ro = settings.geometry.outer_radius;
+    for (unsigned int i = 0; i <= 4; ++i)
+      for (unsigned int j = 0; j < 16; ++j)
+      {
+        const double r = ri + (ro - ri) * i / 4, theta = 2 * M_PI * (j + 0.3) / 16;
+        const dealii::Point<2> x(r * std::cos(theta), r * std::sin(theta));
+        const dealii::Tensor<2, 2> a = s.pressure_flow(x), b = s.local_film(x).K;
+        for (unsigned int m = 0; m < 2; ++m)
+          for (unsigned int n = 0; n < 2; ++n)
+            EXPECT_EQ(a[m][n], b[m][n]) << (rough ? "rough" : "smooth") << " r " << r;
+      }
+  }
+}

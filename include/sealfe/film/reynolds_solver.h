@@ -94,6 +94,8 @@ public:
     double phi_r = 1, phi_theta = 1, phi_s = 0, h_T; // flow factors and expected gap (output)
   };
   LocalFilm local_film(const dealii::Point<2> &x) const;
+  /// The pressure-flow tensor K alone (equal to local_film(x).K, at a fraction of the cost).
+  dealii::Tensor<2, 2> pressure_flow(const dealii::Point<2> &x) const;
 
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
   /// into `directory`; returns the PVD file name (film_output.h).
