@@ -42,8 +42,9 @@ void AnnulusMesh::declare_parameters(ParameterHandler &prm)
                     "file): all quadrilaterals of "
                     "about this size (m) with mesh lines on the circles of dimples (the film's "
                     "steps), then refined by Global refinements with the circles kept. The JFO "
-                    "coarse levels are generated at 2, 4, ... times this size. 0: read the Mesh "
-                    "file as it is.");
+                    "coarse levels are first this mesh refined fewer times (none at the coarsest "
+                    "of these), then meshes generated at 2, 4, ... times this size. 0: read the "
+                    "Mesh file as it is.");
   prm.declare_entry("Align with features", "true", Patterns::Bool(),
                     "Put cell edges of the built-in mesh on the steps of surface features "
                     "(pads: theta and r lines; spiral grooves: the mesh lines follow the spirals; "
@@ -93,12 +94,16 @@ void AnnulusMesh::check_resolves_waves(const double wave_number, const unsigned 
   }
 }
 
-void AnnulusMesh::check_memory(const unsigned int degree) const
+void AnnulusMesh::check_memory(const unsigned int degree, const double ri, const double ro) const
 {
-  if (!mesh_file.empty())
+  // a generated mesh: quads of about Mesh size over the dam, refined (checked before gmsh runs)
+  const bool generated = mesh_size > 0 && ro > ri;
+  if (!mesh_file.empty() && !generated)
     return;
-  const double cells = double(radial_cells) * double(circumferential_cells) *
-                       std::pow(4.0, double(global_refinements));
+  const double coarse_cells = generated
+                                  ? numbers::PI * (ro * ro - ri * ri) / (mesh_size * mesh_size)
+                                  : double(radial_cells) * double(circumferential_cells);
+  const double cells = coarse_cells * std::pow(4.0, double(global_refinements));
   const double dofs = cells * degree * degree;
   const double stencil = (2.0 * degree + 1) * (2.0 * degree + 1);
   // matrix and graph (12 bytes a nonzero), the factorisation or AMG hierarchy and copies (x4),
@@ -111,7 +116,10 @@ void AnnulusMesh::check_memory(const unsigned int degree) const
     s.precision(3);
     s << "Discretization: " << cells << " cells of degree " << degree << " (" << dofs
       << " unknowns) would need about " << bytes / 1e9 << " GB of memory; this machine has "
-      << machine / 1e9 << " GB (lower Radial cells, Circumferential cells or Global refinements)";
+      << machine / 1e9 << " GB ("
+      << (generated ? "raise Mesh size or lower Global refinements"
+                    : "lower Radial cells, Circumferential cells or Global refinements")
+      << ")";
     throw std::runtime_error(s.str());
   }
 }
@@ -127,7 +135,8 @@ bool AnnulusMesh::can_coarsen(const unsigned int coarsening) const
 {
   if (coarsening <= global_refinements)
     return true;
-  // a generated mesh: cells no larger than the circles (about 6 lines around each)
+  // a generated mesh: cells no larger than the circles (at least 8 faces around each: gmsh
+  // meshes each circle as four quarter arcs)
   if (mesh_size > 0)
     return alignment.circle_radius > 0 && generated_size(coarsening) <= alignment.circle_radius;
   if (!mesh_file.empty())
@@ -413,43 +422,66 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
   else
   {
     // Generated mesh: the file asked for at Mesh size (refined), or a coarser one in a temporary
-    // file for the coarse levels. One rank writes, all read.
-    std::string file = mesh_file;
-    if (mesh_size > 0)
-    {
-      const double size = coarsening > global_refinements ? generated_size(coarsening) : mesh_size;
-      if (coarsening > global_refinements)
+    // file for the coarse levels. Rank 0 generates and reads the file and sends its text to all
+    // ranks (which may be on other nodes, without that file); all agree on an error before any
+    // throws. Every rank parses the same text, so they fail or succeed together.
+    const MPI_Comm comm = tria.get_communicator();
+    std::string file = mesh_file, text, error;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      try
       {
-        std::string name =
-            (std::filesystem::temp_directory_path() / "sealfe-coarse-XXXXXX").string();
-        const int fd = ::mkstemp(name.data());
-        if (fd >= 0)
-          ::close(fd);
-        file = name + ".msh";
-        std::filesystem::remove(name);
-      }
-      const MPI_Comm comm = tria.get_communicator();
-      std::string error;
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        try
+        // a temporary file is removed once read, or on an error
+        struct RemoveFile
         {
+          std::string path;
+          ~RemoveFile()
+          {
+            std::error_code ignored;
+            if (!path.empty())
+              std::filesystem::remove(path, ignored);
+          }
+        } remove_file;
+        if (mesh_size > 0)
+        {
+          const double size =
+              coarsening > global_refinements ? generated_size(coarsening) : mesh_size;
+          if (coarsening > global_refinements)
+          {
+            std::string name =
+                (std::filesystem::temp_directory_path() / "sealfe-coarse-XXXXXX").string();
+            const int fd = ::mkstemp(name.data());
+            if (fd < 0)
+              throw std::runtime_error("Discretization: cannot create a temporary file for the "
+                                       "coarse mesh in " +
+                                       std::filesystem::temp_directory_path().string());
+            ::close(fd);
+            std::filesystem::remove(name);
+            file = name + ".msh";
+          }
+          if (file != mesh_file || temporary_mesh_file)
+            remove_file.path = file;
           FeatureMesh::generate(FeatureMesh::geometry(ri, ro, alignment.circle_centres,
                                                       alignment.circle_radius, size),
                                 file);
         }
-        catch (std::exception &e)
-        {
-          error = e.what();
-        }
-      file = Utilities::MPI::broadcast(comm, file, 0);
-      error = Utilities::MPI::broadcast(comm, error, 0);
-      if (!error.empty())
-        throw std::runtime_error(error);
-    }
-    std::ifstream in(file);
-    if (!in)
-      throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
-                               "' is missing or unreadable");
+        std::ifstream in(file);
+        if (!in)
+          throw std::runtime_error("Discretization: Mesh file '" + file +
+                                   "' is missing or unreadable");
+        std::ostringstream s;
+        s << in.rdbuf();
+        text = s.str();
+      }
+      catch (std::exception &e)
+      {
+        error = e.what();
+      }
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    if (!error.empty())
+      throw std::runtime_error(error);
+    file = Utilities::MPI::broadcast(comm, file, 0);
+    text = Utilities::MPI::broadcast(comm, text, 0);
+    std::istringstream in(text);
     GridIn<2> grid_in(coarse);
     try
     {
@@ -457,25 +489,18 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
     }
     catch (std::exception &e)
     {
-      throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
+      throw std::runtime_error("Discretization: Mesh file '" + file +
                                "' is not a readable gmsh mesh");
     }
-    set_boundary_ids(coarse, ri, ro, "Discretization: Mesh file '" + mesh_file + "'");
+    set_boundary_ids(coarse, ri, ro, "Discretization: Mesh file '" + file + "'");
     // Every boundary face must have been classified; both circles must be present.
     bool has_inner = false, has_outer = false;
     for (const auto &face : coarse.active_face_iterators())
       if (face->at_boundary())
         (face->boundary_id() == inner_boundary ? has_inner : has_outer) = true;
     if (!has_inner || !has_outer)
-      throw std::runtime_error("Discretization: Mesh file '" + mesh_file +
+      throw std::runtime_error("Discretization: Mesh file '" + file +
                                "' does not have both circles r = ri and r = ro on its boundary");
-    if (mesh_size > 0 && (file != mesh_file || temporary_mesh_file))
-    {
-      in.close();
-      MPI_Barrier(tria.get_communicator()); // every rank has read it
-      if (Utilities::MPI::this_mpi_process(tria.get_communicator()) == 0)
-        std::filesystem::remove(file);
-    }
   }
 
   tria.copy_triangulation(coarse);

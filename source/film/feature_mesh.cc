@@ -1,6 +1,7 @@
 #include <sealfe/film/feature_mesh.h>
 
 #include <deal.II/base/config.h>
+#include <deal.II/base/numbers.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -15,11 +16,11 @@ namespace sealfe::FeatureMesh
 {
 namespace
 {
-struct Writer
+struct GeoWriter
 {
   std::ostringstream out;
   unsigned int points = 0, curves = 0, loops = 0;
-  Writer() { out.precision(17); }
+  GeoWriter() { out.precision(17); }
   unsigned int point(const double x, const double y)
   {
     out << "Point(" << ++points << ") = {" << x << ", " << y << ", 0};\n";
@@ -32,7 +33,8 @@ struct Writer
     const unsigned int centre = point(c[0], c[1]);
     unsigned int on[4];
     for (unsigned int k = 0; k < 4; ++k)
-      on[k] = point(c[0] + r * std::cos(k * M_PI / 2), c[1] + r * std::sin(k * M_PI / 2));
+      on[k] = point(c[0] + r * std::cos(k * dealii::numbers::PI / 2),
+                    c[1] + r * std::sin(k * dealii::numbers::PI / 2));
     arcs.clear();
     for (unsigned int k = 0; k < 4; ++k)
     {
@@ -53,12 +55,21 @@ std::string list(const std::vector<unsigned int> &tags)
     s << (k ? ", " : "") << tags[k];
   return s.str();
 }
+
+/// `text` as one word for /bin/sh: in single quotes, each ' written as '\''.
+std::string shell_quoted(const std::string &text)
+{
+  std::string q = "'";
+  for (const char c : text)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
 } // namespace
 
 std::string geometry(const double ri, const double ro, const std::vector<dealii::Point<2>> &centres,
                      const double radius, const double size)
 {
-  Writer w;
+  GeoWriter w;
   w.out << "// sealfe: the dam " << ri << " .. " << ro << " m with " << centres.size()
         << " circles of radius " << radius << " m as mesh lines, quads of about " << size << " m\n";
   // Triangles of twice the size, recombined and then subdivided once: all quadrilaterals of about
@@ -92,7 +103,7 @@ std::string geometry(const double ri, const double ro, const std::vector<dealii:
   return w.out.str();
 }
 
-void generate(const std::string &geometry, const std::string &msh_file)
+void generate(const std::string &geo_text, const std::string &msh_file)
 {
 #ifdef DEAL_II_GMSH_EXECUTABLE_PATH
   const std::string gmsh = DEAL_II_GMSH_EXECUTABLE_PATH;
@@ -100,33 +111,61 @@ void generate(const std::string &geometry, const std::string &msh_file)
   const std::string gmsh = "gmsh";
 #endif
   namespace fs = std::filesystem;
-  // A directory of its own for the geometry and gmsh's messages (several solvers may generate at
-  // once: the JFO coarse levels, other processes).
+  // A directory of its own for the geometry, gmsh's output and messages: several processes may
+  // generate the same file at once (the ranks of `sealfe table`, two runs of one prm). The target
+  // appears only whole, by a rename, so no reader sees a half-written file and no process removes
+  // another's fresh one.
   std::string pattern = (fs::temp_directory_path() / "sealfe-mesh-XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr)
     throw std::runtime_error("Discretization: cannot create a temporary directory for gmsh");
   const fs::path dir = pattern;
-  const fs::path geo = dir / "features.geo", log = dir / "gmsh.log";
-  std::ofstream(geo) << geometry;
-  const fs::path target = fs::absolute(msh_file);
-  if (target.has_parent_path())
-    fs::create_directories(target.parent_path());
-  std::error_code ignored;
-  fs::remove(target, ignored); // a stale file must not pass for gmsh's output
-  const std::string command = "'" + gmsh + "' -2 '" + geo.string() + "' -o '" + target.string() +
-                              "' -v 2 > '" + log.string() + "' 2>&1";
-  const int status = std::system(command.c_str());
-  std::string last;
+  struct RemoveDirectory
   {
+    fs::path path;
+    ~RemoveDirectory()
+    {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  } remove_dir{dir};
+  const fs::path geo = dir / "features.geo", log = dir / "gmsh.log", out = dir / "mesh.msh";
+  std::ofstream(geo) << geo_text;
+  const std::string command = shell_quoted(gmsh) + " -2 " + shell_quoted(geo.string()) + " -o " +
+                              shell_quoted(out.string()) + " -v 2 > " + shell_quoted(log.string()) +
+                              " 2>&1";
+  const int status = std::system(command.c_str());
+  if (status != 0 || !fs::exists(out))
+  {
+    std::string last;
     std::ifstream in(log);
     for (std::string line; std::getline(in, line);)
       if (!line.empty())
         last = line;
-  }
-  fs::remove_all(dir, ignored);
-  if (status != 0 || !fs::exists(target))
     throw std::runtime_error("Discretization: gmsh ('" + gmsh + "') failed to mesh the dam with " +
                              "its features into '" + msh_file + "'" +
                              (last.empty() ? std::string() : ": " + last));
+  }
+  const fs::path target = fs::absolute(msh_file);
+  std::error_code error;
+  if (target.has_parent_path())
+    fs::create_directories(target.parent_path(), error);
+  fs::rename(out, target, error);
+  if (error)
+  {
+    // another file system: a copy beside the target, then the (atomic) rename onto it
+    const fs::path copy =
+        target.parent_path() / (target.filename().string() + ".tmp." + std::to_string(::getpid()));
+    error.clear();
+    fs::copy_file(out, copy, fs::copy_options::overwrite_existing, error);
+    if (!error)
+      fs::rename(copy, target, error);
+    if (error)
+    {
+      std::error_code ignored;
+      fs::remove(copy, ignored);
+      throw std::runtime_error("Discretization: cannot write the generated mesh to '" + msh_file +
+                               "': " + error.message());
+    }
+  }
 }
 } // namespace sealfe::FeatureMesh

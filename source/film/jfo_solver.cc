@@ -446,8 +446,11 @@ bool JFOSolver::coarse_start()
   {
     coarse.run(s.current_coarsening + 1);
   }
-  catch (std::exception &)
+  catch (std::exception &e)
   {
+    if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
+      std::cerr << "JFO: the coarse start failed (" << e.what()
+                << "); starting from the full film instead" << std::endl;
     return false; // fall back to the full-film start
   }
   std::map<types::global_dof_index, Point<2>> support;

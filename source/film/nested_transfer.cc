@@ -57,9 +57,7 @@ bool values_from_parent_cells(const DoFHandler<2> &fine, const DoFHandler<2> &co
     for (std::size_t f = 0; f < fields.size(); ++f)
       other->get_dof_values(*fields[f], coarse_values[f]);
     // child c of an isotropically refined quad covers [c % 2, c % 2 + 1] x [c / 2, c / 2 + 1] / 2
-    unsigned int child = 0;
-    while (parent->child(child) != cell)
-      ++child;
+    const unsigned int child = parent->child_iterator_to_index(cell);
     const Point<2> corner(0.5 * (child % 2), 0.5 * (child / 2));
     for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
     {

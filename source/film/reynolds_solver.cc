@@ -509,7 +509,7 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   conditions.validate();
   if (coarsening == 0) // before anything is allocated
   {
-    settings.mesh.check_memory(settings.polynomial_degree);
+    settings.mesh.check_memory(settings.polynomial_degree, film.inner_radius, film.outer_radius);
     if (film.wave_amplitude != 0)
       settings.mesh.check_resolves_waves(film.wave_number, settings.polynomial_degree);
     // Surface features: the built-in mesh can put cell edges on the steps only if every period

@@ -201,6 +201,13 @@ TEST(SolveInput, MeshBeyondTheMachinesMemory)
     expect_refused(d, run_case(d, "subsection Discretization\n  set " + entry + "\nend\n"),
                    "GB of memory");
   }
+  // a mistyped Mesh size (1e-6 m for 1e-3 m) would start gmsh on about 1e10 cells: refused, from
+  // the area of the dam over size^2, before gmsh runs
+  {
+    const fs::path d = work_dir();
+    expect_refused(d, run_case(d, "subsection Discretization\n  set Mesh size = 1e-6\nend\n"),
+                   "raise Mesh size");
+  }
 }
 
 // Output/Fields: an unknown name, and a field the model does not have, are refused before the

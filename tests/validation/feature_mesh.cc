@@ -4,17 +4,25 @@
 //    the quadrature points is the polygonal film of the mesh exactly, and the polygon misses the
 //    circle by the circular segments R^2/2 (phi - sin phi): O(h^2), 4 times less per refinement
 //    because refinement puts the new vertices on the circles;
-//  - JFO on the fitted mesh (coarse levels generated at 2 h) conserves mass to 1e-8.
+//  - JFO on the fitted mesh (coarse levels: the unrefined generated mesh, then meshes generated
+//    at 2 h, 4 h) conserves mass to 1e-8.
 #include "../surface_feature_seals.h"
 
 #include <sealfe/film/film_summary.h>
+#include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/surface_features.h>
 
+#include <deal.II/base/function_lib.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_nothing.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/numerics/vector_tools.h>
 
 #include <gtest/gtest.h>
 
@@ -142,7 +150,8 @@ TEST(FeatureMesh, DimpleCirclesAreMeshLinesAndTheFilmIsThePolygonal)
 
 TEST(FeatureMesh, JfoMassBalanceOnTheFittedMesh)
 {
-  // JFO with its coarse start on meshes generated at 2 h, 4 h (non-nested with the fine one)
+  // JFO with its coarse start: with Global refinements = 1 the first coarse level is the generated
+  // mesh unrefined (nested), the next ones are generated at 2 h, 4 h (non-nested)
   DimpledSeal seal;
   seal.radius = 2e-3;
   seal.degree = 1;
@@ -161,4 +170,45 @@ TEST(FeatureMesh, JfoMassBalanceOnTheFittedMesh)
   EXPECT_GT(jfo.cavitated_fraction, 0.0);
   EXPECT_LT(jfo.cavitated_fraction, 1.0);
   std::filesystem::remove(seal.mesh_file);
+}
+
+TEST(FeatureMesh, ValuesFromParentCellsAreTheCoarseFunction)
+{
+  using namespace dealii;
+  // The transfer of the JFO coarse start on a refined mesh: a fine node's value is the coarse
+  // function at its parent cell's reference point (child corner + unit point / 2). On a distorted
+  // quad mesh with flat manifolds refinement puts the new vertices at the edge midpoints and the
+  // cell centre, so each child is exactly its parent's bilinear image of a quarter of the square:
+  // the values equal the coarse function at the fine support points up to round-off.
+  Triangulation<2> coarse_tria, fine_tria;
+  GridGenerator::subdivided_hyper_rectangle(coarse_tria, {5, 4}, Point<2>(0, 0), Point<2>(2, 1));
+  GridTools::distort_random(0.25, coarse_tria, false, 7);
+  fine_tria.copy_triangulation(coarse_tria);
+  fine_tria.refine_global(1);
+  const FE_Q<2> fe(2);
+  DoFHandler<2> coarse(coarse_tria), fine(fine_tria);
+  coarse.distribute_dofs(fe);
+  fine.distribute_dofs(fe);
+  // a function of the coarse FE space: the interpolant of a smooth function
+  TrilinosWrappers::MPI::Vector u(complete_index_set(coarse.n_dofs()), MPI_COMM_SELF);
+  Vector<double> u_serial(coarse.n_dofs());
+  VectorTools::interpolate(coarse, Functions::SquareFunction<2>(), u_serial);
+  for (unsigned int i = 0; i < u_serial.size(); ++i)
+    u[i] = u_serial[i] + std::sin(3.0 * i); // not a polynomial of the coordinates alone
+  for (unsigned int i = 0; i < u_serial.size(); ++i)
+    u_serial[i] = u[i];
+  std::vector<types::global_dof_index> dofs(fine.n_dofs());
+  for (types::global_dof_index i = 0; i < fine.n_dofs(); ++i)
+    dofs[i] = i;
+  std::vector<std::vector<double>> values;
+  ASSERT_TRUE(values_from_parent_cells(fine, coarse, {&u}, dofs, values));
+  std::map<types::global_dof_index, Point<2>> support;
+  DoFTools::map_dofs_to_support_points(MappingQ1<2>(), fine, support);
+  double worst = 0;
+  for (const auto i : dofs)
+    worst = std::max(
+        worst, std::abs(values[0][i] - VectorTools::point_value(coarse, u_serial, support[i])));
+  std::cout << "values from parent cells vs point values: max difference " << worst << "\n";
+  // round-off, and the inverse mapping point_value solves by Newton (to about 1e-12 of a cell)
+  EXPECT_LT(worst, 1e-10 * u_serial.linfty_norm());
 }

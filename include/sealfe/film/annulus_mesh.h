@@ -70,8 +70,10 @@ public:
 
   /// Throws std::runtime_error, with the figures, if the requested built-in mesh with elements of
   /// `degree` would need more memory than the machine has (estimate: 1.5 kB per degree of
-  /// freedom for degree 2, scaled with the stencil (2 degree + 1)^2). Mesh files: not checked.
-  void check_memory(const unsigned int degree) const;
+  /// freedom for degree 2, scaled with the stencil (2 degree + 1)^2). A mesh generated at Mesh
+  /// size over the dam ri..ro: about pi (ro^2 - ri^2) / size^2 cells, refined; checked before gmsh
+  /// runs. Mesh files read as they are: not checked.
+  void check_memory(const unsigned int degree, const double ri = 0, const double ro = 0) const;
 
   /// True if a mesh `coarsening` levels coarser than the requested one can be built. A mesh file
   /// loses its global refinements; a generated mesh (Mesh size > 0) is then generated again with

@@ -16,7 +16,8 @@ namespace sealfe::FeatureMesh
 std::string geometry(const double ri, const double ro, const std::vector<dealii::Point<2>> &centres,
                      const double radius, const double size);
 
-/// Meshes `geometry` with the gmsh program into `msh_file` (gmsh 2.2 ASCII, the format GridIn
-/// reads). Throws std::runtime_error with gmsh's last message if gmsh is missing or fails.
-void generate(const std::string &geometry, const std::string &msh_file);
+/// Meshes `geo_text` with the gmsh program into `msh_file` (gmsh 2.2 ASCII, the format GridIn
+/// reads), which appears whole (renamed into place) or not at all. Throws std::runtime_error with
+/// gmsh's last message if gmsh is missing or fails.
+void generate(const std::string &geo_text, const std::string &msh_file);
 } // namespace sealfe::FeatureMesh
