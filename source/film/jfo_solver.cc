@@ -28,6 +28,25 @@ using namespace dealii;
 
 namespace
 {
+/// Calls visit(row, entries, values, columns, first) for each local row of M in storage order;
+/// `first` is the row's first entry in a flat copy of M's values (the layout of global_PA and
+/// global_G). The values are M's own storage (deal.II 9.4 hands out the Epetra matrix read-only;
+/// writing them changes neither the pattern nor the filled state).
+template <typename Visit>
+void for_each_row(const Epetra_CrsMatrix &M, Visit &&visit)
+{
+  std::size_t first = 0;
+  for (int row = 0; row < M.NumMyRows(); ++row)
+  {
+    int entries;
+    double *values;
+    int *columns;
+    M.ExtractMyRowView(row, entries, values, columns);
+    visit(row, entries, values, columns, first);
+    first += entries;
+  }
+}
+
 /// Fischer-Burmeister function phi(a, b) = a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0,
 /// a b = 0. Returns phi and its partial derivatives (the generalised ones at the origin).
 struct FischerBurmeister
@@ -111,9 +130,7 @@ bool JFOSolver::prepare_global_matrices()
   const double P = s.pressure_scale;
   FullMatrix<double> J(n, n);
   std::vector<types::global_dof_index> dofs(n);
-  const // deal.II 9.4 gives the Epetra matrix read-only; its values are set in place (the pattern
-        // and the filled state are unchanged)
-      auto &M = const_cast<Epetra_CrsMatrix &>(s.system_matrix.trilinos_matrix());
+  const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
   for (std::vector<double> *values : {&global_PA, &global_G})
   {
     s.system_matrix = 0;
@@ -129,16 +146,9 @@ bool JFOSolver::prepare_global_matrices()
     }
     s.system_matrix.compress(VectorOperation::add);
     values->resize(M.NumMyNonzeros());
-    std::size_t position = 0;
-    for (int row = 0; row < M.NumMyRows(); ++row)
-    {
-      int entries;
-      double *row_values;
-      int *columns;
-      M.ExtractMyRowView(row, entries, row_values, columns);
-      std::copy(row_values, row_values + entries, values->begin() + position);
-      position += entries;
-    }
+    for_each_row(M, [&](int, const int entries, const double *row_values, const int *,
+                        const std::size_t first)
+                 { std::copy(row_values, row_values + entries, values->begin() + first); });
   }
   global_matrices = 1;
   return true;
@@ -245,36 +255,34 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
     for (std::size_t j = 0; j < n; ++j)
       keep_pressure[j] = pa[j] >= pv[j];
   }
-  std::size_t position = 0;
-  for (int row = 0; row < M.NumMyRows(); ++row)
-  {
-    int entries;
-    double *values;
-    int *columns;
-    M.ExtractMyRowView(row, entries, values, columns);
-    const auto i = row_gid[row];
-    if (constrained[i])
-    {
-      res[i] = 0;
-      if (with_rhs)
-        rhs[i] = 0;
-      position += entries;
-      continue;
-    }
-    // constrained columns hold zeros in the condensed P A and G (their terms are constant)
-    double r = constant_residual[i], b = constant_rhs[i];
-    for (int e = 0; e < entries; ++e, ++position)
-    {
-      const auto j = column_gid[columns[e]];
-      const double pa_e = global_PA[position] * pa[j], g_e = global_G[position] * pv[j];
-      r -= pa_e + g_e;
-      if (with_rhs)
-        b -= keep_pressure[j] ? pa_e : g_e;
-    }
-    res[i] = r;
-    if (with_rhs)
-      rhs[i] = b;
-  }
+  for_each_row(M,
+               [&](const int row, const int entries, const double *, const int *columns,
+                   const std::size_t first)
+               {
+                 const auto i = row_gid[row];
+                 if (constrained[i])
+                 {
+                   res[i] = 0;
+                   if (with_rhs)
+                     rhs[i] = 0;
+                   return;
+                 }
+                 // constrained columns hold zeros in the condensed P A and G (their terms are
+                 // constant)
+                 double r = constant_residual[i], b = constant_rhs[i];
+                 for (int e = 0; e < entries; ++e)
+                 {
+                   const auto j = column_gid[columns[e]];
+                   const double pa_e = global_PA[first + e] * pa[j],
+                                g_e = global_G[first + e] * pv[j];
+                   r -= pa_e + g_e;
+                   if (with_rhs)
+                     b -= keep_pressure[j] ? pa_e : g_e;
+                 }
+                 res[i] = r;
+                 if (with_rhs)
+                   rhs[i] = b;
+               });
   return true;
 }
 
@@ -368,25 +376,22 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
     if (select_columns)
     {
       // column j from P A where node j keeps its pressure (a_j >= v_j), else from G
-      // deal.II 9.4 gives the Epetra matrix read-only; its values are set in place (the pattern
-      // and the filled state are unchanged)
-      auto &M = const_cast<Epetra_CrsMatrix &>(s.system_matrix.trilinos_matrix());
+      // the values are set in place (for_each_row)
+      const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
       std::vector<char> keep_pressure(M.NumMyCols());
       for (int c = 0; c < M.NumMyCols(); ++c)
       {
         const auto j = M.ColMap().GID64(c);
         keep_pressure[c] = a[j] >= v[j];
       }
-      std::size_t position = 0;
-      for (int row = 0; row < M.NumMyRows(); ++row)
-      {
-        int entries;
-        double *row_values;
-        int *columns;
-        M.ExtractMyRowView(row, entries, row_values, columns);
-        for (int e = 0; e < entries; ++e, ++position)
-          row_values[e] = keep_pressure[columns[e]] ? global_PA[position] : global_G[position];
-      }
+      for_each_row(M,
+                   [&](int, const int entries, double *row_values, const int *columns,
+                       const std::size_t first)
+                   {
+                     for (int e = 0; e < entries; ++e)
+                       row_values[e] =
+                           keep_pressure[columns[e]] ? global_PA[first + e] : global_G[first + e];
+                   });
     }
     else
       s.system_matrix.compress(VectorOperation::add);
