@@ -4,16 +4,33 @@
 #pragma once
 
 #include <sealfe/film/film_settings.h>
+#include <sealfe/film/film_summary.h>
 #include <sealfe/film/reynolds_solver.h>
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <string>
 
 namespace sealfe::test
 {
+/// |Q_in + Q_out + squeeze| of a solve relative to its flow scale (film_summary.h), printed with
+/// the force and the cavitated fraction under the heading `what`.
+inline double relative_mass_imbalance(const ReynoldsSolver &solver, const FilmLoads &loads,
+                                      const std::string &what)
+{
+  const double scale =
+      mass_balance_flow_scale(solver.settings.geometry, solver.settings.conditions, loads);
+  const double imbalance =
+      std::abs(loads.leakage_inner + loads.leakage_outer + loads.squeeze_flow) / scale;
+  std::cout << what << ": dofs " << solver.n_dofs() << ", force " << loads.force_z
+            << " N, cavitated fraction " << loads.cavitated_fraction << ", mass balance "
+            << imbalance << " of " << scale << " m^3/s\n";
+  return imbalance;
+}
+
 inline FilmSettings parse_settings(const std::string &text)
 {
   dealii::ParameterHandler prm;
