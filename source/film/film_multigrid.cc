@@ -1,4 +1,5 @@
 #include <sealfe/film/film_multigrid.h>
+#include <sealfe/film/lap_timer.h>
 #include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/mg_level_object.h>
@@ -352,10 +353,13 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
                           const std::vector<types::boundary_id> &dirichlet_ids)
 {
   clear();
+  times.clear();
+  LapTimer lap(times);
   dof_handler = &dof_handler_in;
   mapping = &mapping_in;
   data = std::make_unique<Data>();
   dof_handler->distribute_mg_dofs();
+  lap("level dofs");
   const auto &tria = dof_handler->get_triangulation();
   const MPI_Comm comm = dof_handler->get_communicator();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
@@ -369,9 +373,11 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
     dof_handler->renumber_dofs(
         l, numbers_by_lines(dof_handler->locally_owned_mg_dofs(l), data->lines[l]));
   }
+  lap("level numbering by lines");
   data->constrained_dofs.initialize(*dof_handler);
   data->constrained_dofs.make_zero_boundary_constraints(
       *dof_handler, std::set<types::boundary_id>(dirichlet_ids.begin(), dirichlet_ids.end()));
+  lap("level boundary dofs");
 
   // The mesh is refined globally, so every active cell is on the finest level. When the level
   // numbering of that level is the active one, the system matrix is the finest level operator
@@ -394,6 +400,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
       }
   }
   data->fine_is_system = Utilities::MPI::min(same ? 1 : 0, comm) == 1;
+  lap("fine level check");
 
   data->level_constraints.resize(n_levels);
   data->level_matrices.resize(0, fine);
@@ -415,13 +422,16 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
                                    dof_handler->locally_owned_mg_dofs(l), dsp, comm);
   }
 
+  lap("level sparsity");
   data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
   data->transfer->build(*dof_handler);
+  lap("transfer");
 }
 
 void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
                             const unsigned int n_gauss, const Parameters &parameters)
 {
+  LapTimer lap(times);
   const auto &tria = dof_handler->get_triangulation();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
   const auto &fe = dof_handler->get_fe();
@@ -465,6 +475,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     matrix.compress(VectorOperation::add);
   }
 
+  lap("level assembly");
   data->operators.matrices.resize(n_levels);
   for (unsigned int l = 0; l < n_levels; ++l)
     data->operators.matrices[l] =
@@ -478,6 +489,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     typename Smoother::AdditionalData smoother_data;
     smoother_data.preconditioner = std::make_shared<LineJacobi>();
     smoother_data.preconditioner->initialize(A, data->lines[l]);
+    lap("line factorisations");
     smoother_data.degree = parameters.smoother_degree;
     smoother_data.smoothing_range = parameters.smoothing_range;
     // Largest eigenvalue of B^-1 A by CG from a random start (Lanczos estimates). deal.II's own
@@ -507,9 +519,11 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       smoother_data.eig_cg_n_iterations = 0;
       smoother_data.max_eigenvalue = 1.2 * largest;
     }
+    lap("eigenvalue estimates");
     data->smoother.smoothers[l].initialize(A, smoother_data);
   }
   data->coarse.direct.factorize(*data->operators.matrices[0]);
+  lap("coarse factorisation");
 
   if (data->fine_is_system && data->defect.max_level() != fine)
   {
@@ -528,6 +542,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
   data->preconditioner =
       std::make_unique<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>>(
           *dof_handler, *data->multigrid, *data->transfer);
+  lap("vectors");
 }
 
 void FilmMultigrid::vmult(VectorType &dst, const VectorType &src) const

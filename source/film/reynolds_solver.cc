@@ -1,5 +1,6 @@
 #include <sealfe/film/film_output.h>
 #include <sealfe/film/jfo_solver.h>
+#include <sealfe/film/lap_timer.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/round_off.h>
@@ -70,6 +71,8 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
     system_rhs = 0;
     return;
   }
+  setup_detail.clear();
+  LapTimer lap(setup_detail);
   dof_handler.clear();
   triangulation.clear();
   linear_system_solver.clear();
@@ -83,6 +86,7 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   mesh_parameters.alignment =
       film.features ? film.features->mesh_alignment() : AnnulusMesh::Alignment();
   mesh_parameters.create(triangulation, film.inner_radius, film.outer_radius, coarsening);
+  lap("setup: mesh");
 
   fe = std::make_unique<FE_Q<2>>(polynomial_degree);
   // The mapping's support points come from the polar manifold (a pull-back and push-forward per
@@ -92,13 +96,16 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   auto cached = std::make_unique<MappingQCache<2>>(polynomial_degree);
   cached->initialize(MappingQ<2>(polynomial_degree), triangulation);
   mapping = std::move(cached);
+  lap("setup: mapping cache");
   dof_handler.distribute_dofs(*fe);
+  lap("setup: dofs");
   // The geometric multigrid's line smoother wants the dofs numbered by radial lines.
   if (FilmLinearSolver::choose(linear_solver, true, dof_handler.n_dofs(),
                                mesh_parameters.mesh_file.empty() &&
                                    FilmMultigrid::has_hierarchy(dof_handler)) ==
       FilmLinearSolver::Method::cg_gmg)
     FilmMultigrid::number_by_radial_lines(dof_handler, *mapping);
+  lap("setup: numbering by lines");
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
@@ -121,13 +128,17 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_boundary_dofs,
                                   {AnnulusMesh::outer_boundary});
 
+  lap("setup: index sets, zero constraints, boundary dofs");
   // The constrained dofs are the same with any Dirichlet data: one sparsity pattern per mesh.
   DynamicSparsityPattern dsp(locally_relevant_dofs);
   DoFTools::make_sparsity_pattern(dof_handler, dsp, homogeneous_constraints, false);
   SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
                                              locally_relevant_dofs);
+  lap("setup: sparsity");
   system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+  lap("setup: matrix");
   setup_constraints();
+  lap("setup: constraints");
 
   setup_settings = std::make_unique<FilmSettings>(settings);
   setup_coarsening = coarsening;
@@ -564,6 +575,14 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
 std::map<std::string, double> ReynoldsSolver::stage_times() const
 {
   return timer.get_summary_data(TimerOutput::total_wall_time);
+}
+
+std::map<std::string, double> ReynoldsSolver::detail_times() const
+{
+  std::map<std::string, double> times = setup_detail;
+  for (const auto &[name, t] : multigrid.times)
+    times["multigrid: " + name] = t;
+  return times;
 }
 
 double ReynoldsSolver::volume_flow_through_circle(const double rho,

@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <functional>
+#include <map>
 #include <memory>
 
 namespace sealfe
@@ -70,6 +71,9 @@ public:
   void vmult(VectorType &dst, const VectorType &src) const;
 
   unsigned int n_levels() const;
+
+  /// Seconds of the parts of setup() and prepare() since the last setup().
+  std::map<std::string, double> times;
 
 private:
   struct Data;

@@ -146,6 +146,8 @@ public:
   unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
   /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
   std::map<std::string, double> stage_times() const;
+  /// Parts of the setup stage and of the multigrid set-up of the current mesh (seconds).
+  std::map<std::string, double> detail_times() const;
 
   /// Optional manufactured-solution hooks (tests): Dirichlet data on both circles and an extra
   /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
@@ -253,6 +255,7 @@ private:
   double cavitation_residual = 0;
   unsigned int last_iterations = 0;
   mutable dealii::TimerOutput timer;
+  std::map<std::string, double> setup_detail;
 };
 
 /// Error estimate of every load of a degree-k solve from the same solve on a mesh twice as coarse
