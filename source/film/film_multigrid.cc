@@ -330,6 +330,7 @@ void FilmMultigrid::number_by_radial_lines(DoFHandler<2> &dof_handler, const Map
 {
   const RadialLines lines = find_radial_lines(dof_handler, mapping, numbers::invalid_unsigned_int);
   dof_handler.renumber_dofs(numbers_by_lines(dof_handler.locally_owned_dofs(), lines));
+  active_line_start = lines.start;
 }
 
 bool FilmMultigrid::has_hierarchy(const DoFHandler<2> &dof_handler)
@@ -347,12 +348,13 @@ void FilmMultigrid::clear()
   data.reset();
   dof_handler = nullptr;
   mapping = nullptr;
+  active_line_start.clear();
 }
 
 void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mapping_in,
                           const std::vector<types::boundary_id> &dirichlet_ids)
 {
-  clear();
+  data.reset(); // not clear(): the active lines of number_by_radial_lines are kept
   times.clear();
   LapTimer lap(times);
   dof_handler = &dof_handler_in;
@@ -367,8 +369,54 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   // Every level numbered by radial lines (as the active dofs are, number_by_radial_lines): the
   // line blocks of the smoother are contiguous and the level matrices banded.
   data->lines.resize(n_levels);
+  // The finest level takes the active numbers and lines (every active cell is on it): a cell
+  // loop instead of a second search by support points, and the system matrix is then that
+  // level's operator. Where a level dof would get a number this rank does not own, the finest
+  // level is numbered by its own lines like the others.
+  bool fine_from_active =
+      !active_line_start.empty() &&
+      active_line_start.back() == dof_handler->locally_owned_dofs().n_elements();
+  if (fine_from_active)
+  {
+    const IndexSet &owned_level = dof_handler->locally_owned_mg_dofs(fine),
+                   &owned_active = dof_handler->locally_owned_dofs();
+    std::vector<types::global_dof_index> numbers(owned_level.n_elements(),
+                                                 numbers::invalid_dof_index);
+    const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
+    std::vector<types::global_dof_index> level_dofs(n), active_dofs(n);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        if (cell->level() != int(fine))
+        {
+          fine_from_active = false;
+          break;
+        }
+        cell->get_mg_dof_indices(level_dofs);
+        cell->get_dof_indices(active_dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          if (owned_level.is_element(level_dofs[i]))
+          {
+            if (!owned_active.is_element(active_dofs[i]))
+              fine_from_active = false;
+            numbers[owned_level.index_within_set(level_dofs[i])] = active_dofs[i];
+          }
+      }
+    fine_from_active =
+        fine_from_active && owned_level.n_elements() == owned_active.n_elements() &&
+        std::find(numbers.begin(), numbers.end(), numbers::invalid_dof_index) == numbers.end();
+    fine_from_active = Utilities::MPI::min(fine_from_active ? 1 : 0, comm) == 1;
+    if (fine_from_active)
+    {
+      dof_handler->renumber_dofs(fine, numbers);
+      data->lines[fine].order.resize(owned_active.n_elements());
+      data->lines[fine].start = active_line_start;
+    }
+  }
   for (unsigned int l = 0; l < n_levels; ++l)
   {
+    if (l == fine && fine_from_active)
+      continue;
     data->lines[l] = find_radial_lines(*dof_handler, *mapping, l);
     dof_handler->renumber_dofs(
         l, numbers_by_lines(dof_handler->locally_owned_mg_dofs(l), data->lines[l]));

@@ -104,7 +104,7 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
                                mesh_parameters.mesh_file.empty() &&
                                    FilmMultigrid::has_hierarchy(dof_handler)) ==
       FilmLinearSolver::Method::cg_gmg)
-    FilmMultigrid::number_by_radial_lines(dof_handler, *mapping);
+    multigrid.number_by_radial_lines(dof_handler, *mapping);
   lap("setup: numbering by lines");
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();

@@ -49,8 +49,8 @@ public:
   /// Number the (active) dofs by radial lines: by angle, then radius, within each rank's set.
   /// The multigrid numbers its levels the same way, so that the finest level is the system
   /// matrix and the smoother's line blocks are contiguous.
-  static void number_by_radial_lines(dealii::DoFHandler<2> &dof_handler,
-                                     const dealii::Mapping<2> &mapping);
+  void number_by_radial_lines(dealii::DoFHandler<2> &dof_handler,
+                              const dealii::Mapping<2> &mapping);
 
   /// Whether `dof_handler`'s mesh has a level hierarchy worth a multigrid (at least 2 levels).
   static bool has_hierarchy(const dealii::DoFHandler<2> &dof_handler);
@@ -80,6 +80,9 @@ private:
   std::unique_ptr<Data> data;
   dealii::DoFHandler<2> *dof_handler = nullptr;
   const dealii::Mapping<2> *mapping = nullptr;
+  /// The radial lines of the active numbering (number_by_radial_lines): first position of each
+  /// line within the owned dofs; the finest level reuses them.
+  std::vector<unsigned int> active_line_start;
 };
 
 } // namespace sealfe
