@@ -20,10 +20,12 @@
 #include <deal.II/multigrid/multigrid.h>
 
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <vector>
 
@@ -274,6 +276,133 @@ public:
   void clear() override { smoothers.resize(0, 0); }
 };
 
+/// Prolongation from each level to the next finer one by the finite-element embedding, with the
+/// columns of the coarse level's boundary dofs zeroed (zero Dirichlet data): the matrices of
+/// MGTransferPrebuilt, built directly as Epetra matrices from one loop over the parent cells
+/// instead of deal.II's generic path (a dynamic sparsity pattern, a FullMatrix copy per child,
+/// set() through the Trilinos wrapper, and the copy indices between the active and level
+/// numberings, which the V-cycle on the system's own numbering does not need: 0.6 s at 1e6 Q2
+/// dofs, doc/performance.md). Built only where every owned row of each finer level is reached
+/// from a parent cell this rank sees (else: build() returns false).
+class LevelTransfer
+{
+public:
+  bool build(const DoFHandler<2> &dof_handler, const MGConstrainedDoFs &constrained_dofs)
+  {
+    const auto &tria = dof_handler.get_triangulation();
+    const auto &fe = dof_handler.get_fe();
+    const MPI_Comm comm = dof_handler.get_communicator();
+    const unsigned int n_levels = tria.n_global_levels(), n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> parent(n), child(n);
+    std::vector<bool> boundary(n);
+    prolongation.clear();
+    prolongation.resize(n_levels);
+    maps.clear();
+    for (unsigned int l = 0; l < n_levels; ++l)
+      maps.push_back(std::make_unique<Epetra_Map>(
+          dof_handler.locally_owned_mg_dofs(l).make_trilinos_map(comm, true)));
+    bool complete = true;
+    for (unsigned int l = 1; l < n_levels; ++l)
+    {
+      const IndexSet &owned = dof_handler.locally_owned_mg_dofs(l);
+      const std::size_t n_rows = owned.n_elements();
+      // (row, column, value) of each owned row, the row from the first child cell that has it
+      std::vector<bool> done(n_rows, false);
+      std::vector<unsigned int> row_of;
+      std::vector<int> columns;
+      std::vector<double> values;
+      row_of.reserve(4 * n_rows);
+      columns.reserve(4 * n_rows);
+      values.reserve(4 * n_rows);
+      for (const auto &cell : dof_handler.mg_cell_iterators_on_level(l - 1))
+        if (cell->has_children() && cell->level_subdomain_id() != numbers::artificial_subdomain_id)
+        {
+          cell->get_mg_dof_indices(parent);
+          for (unsigned int j = 0; j < n; ++j)
+            boundary[j] = constrained_dofs.is_boundary_index(l - 1, parent[j]);
+          for (unsigned int c = 0; c < cell->n_children(); ++c)
+          {
+            const auto child_cell = cell->child(c);
+            if (child_cell->level_subdomain_id() == numbers::artificial_subdomain_id)
+              continue;
+            const FullMatrix<double> &P =
+                fe.get_prolongation_matrix(c, RefinementCase<2>::isotropic_refinement);
+            child_cell->get_mg_dof_indices(child);
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              if (!owned.is_element(child[i]))
+                continue;
+              const auto row = owned.index_within_set(child[i]);
+              if (done[row])
+                continue;
+              done[row] = true;
+              for (unsigned int j = 0; j < n; ++j)
+                if (P(i, j) != 0 && !boundary[j])
+                {
+                  row_of.push_back(row);
+                  columns.push_back(int(parent[j]));
+                  values.push_back(P(i, j));
+                }
+            }
+          }
+        }
+      complete = complete && std::find(done.begin(), done.end(), false) == done.end();
+      // rows in order (counting sort), then one InsertGlobalValues per row
+      std::vector<int> count(n_rows, 0);
+      for (const unsigned int r : row_of)
+        ++count[r];
+      std::vector<std::size_t> start(n_rows + 1, 0);
+      for (std::size_t r = 0; r < n_rows; ++r)
+        start[r + 1] = start[r] + count[r];
+      std::vector<int> sorted_columns(columns.size());
+      std::vector<double> sorted_values(values.size());
+      std::vector<std::size_t> next(start.begin(), start.end() - 1);
+      for (std::size_t e = 0; e < row_of.size(); ++e)
+      {
+        const std::size_t k = next[row_of[e]]++;
+        sorted_columns[k] = columns[e];
+        sorted_values[k] = values[e];
+      }
+      auto matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], count.data(), true);
+      for (std::size_t r = 0; r < n_rows; ++r)
+        if (count[r] > 0)
+          matrix->InsertGlobalValues(int(owned.nth_index_in_set(r)), count[r],
+                                     &sorted_values[start[r]], &sorted_columns[start[r]]);
+      matrix->FillComplete(*maps[l - 1], *maps[l]);
+      prolongation[l] = std::move(matrix);
+    }
+    return Utilities::MPI::min(complete ? 1 : 0, comm) == 1;
+  }
+
+  /// dst (level l) += P src (level l - 1)
+  void prolongate_and_add(const unsigned int l, VectorType &dst, const VectorType &src)
+  {
+    VectorType &t = work(l, dst);
+    prolongation[l]->Multiply(false, src.trilinos_vector(), t.trilinos_vector());
+    dst += t;
+  }
+
+  /// dst (level l - 1) += P^T src (level l)
+  void restrict_and_add(const unsigned int l, VectorType &dst, const VectorType &src)
+  {
+    VectorType &t = work(l - 1, dst);
+    prolongation[l]->Multiply(true, src.trilinos_vector(), t.trilinos_vector());
+    dst += t;
+  }
+
+private:
+  std::vector<std::unique_ptr<Epetra_Map>> maps;
+  std::vector<std::unique_ptr<Epetra_CrsMatrix>> prolongation; // [l]: level l - 1 -> l
+  std::map<unsigned int, VectorType> scratch;
+  VectorType &work(const unsigned int l, const VectorType &like)
+  {
+    VectorType &t = scratch[l];
+    if (t.size() != like.size())
+      t.reinit(like, true);
+    return t;
+  }
+};
+
 /// KLU on the coarsest level.
 class CoarseDirect : public MGCoarseGridBase<VectorType>
 {
@@ -294,7 +423,8 @@ struct FilmMultigrid::Data
   MGLevelObject<MatrixType> level_matrices; // the assembled ones
   LevelMatrices operators;
   bool fine_is_system = false;
-  std::unique_ptr<MGTransferPrebuilt<VectorType>> transfer;
+  std::unique_ptr<MGTransferPrebuilt<VectorType>> transfer; // !fine_is_system
+  LevelTransfer level_transfer;                             // fine_is_system
   ChebyshevSmoother smoother;
   CoarseDirect coarse;
   std::unique_ptr<Multigrid<VectorType>> multigrid;
@@ -316,9 +446,9 @@ struct FilmMultigrid::Data
     operators.vmult(l, residual[l], solution[l]);
     residual[l].sadd(-1.0, 1.0, defect[l]);
     defect[l - 1] = 0;
-    transfer->restrict_and_add(l, defect[l - 1], residual[l]);
+    level_transfer.restrict_and_add(l, defect[l - 1], residual[l]);
     v_step(l - 1);
-    transfer->prolongate_and_add(l, solution[l], solution[l - 1]);
+    level_transfer.prolongate_and_add(l, solution[l], solution[l - 1]);
     smoother.smooth(l, solution[l], defect[l]);
   }
 };
@@ -450,6 +580,15 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   data->fine_is_system = Utilities::MPI::min(same ? 1 : 0, comm) == 1;
   lap("fine level check");
 
+  if (data->fine_is_system)
+    data->fine_is_system = data->level_transfer.build(*dof_handler, data->constrained_dofs);
+  if (!data->fine_is_system)
+  {
+    data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
+    data->transfer->build(*dof_handler);
+  }
+  lap("transfer");
+
   data->level_constraints.resize(n_levels);
   data->level_matrices.resize(0, fine);
   for (unsigned int l = 0; l < n_levels; ++l)
@@ -471,9 +610,6 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   }
 
   lap("level sparsity");
-  data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
-  data->transfer->build(*dof_handler);
-  lap("transfer");
 }
 
 void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
@@ -585,11 +721,14 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       data->residual[l].reinit(data->defect[l]);
     }
   }
-  data->multigrid = std::make_unique<Multigrid<VectorType>>(
-      data->operators, data->coarse, *data->transfer, data->smoother, data->smoother);
-  data->preconditioner =
-      std::make_unique<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>>(
-          *dof_handler, *data->multigrid, *data->transfer);
+  if (!data->fine_is_system)
+  {
+    data->multigrid = std::make_unique<Multigrid<VectorType>>(
+        data->operators, data->coarse, *data->transfer, data->smoother, data->smoother);
+    data->preconditioner =
+        std::make_unique<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>>(
+            *dof_handler, *data->multigrid, *data->transfer);
+  }
   lap("vectors");
 }
 
