@@ -141,6 +141,10 @@ public:
       for (unsigned int p = lines->start[k]; p < lines->start[k + 1]; ++p)
         line_of[p] = k;
     }
+    // the row of each column (-1: not owned), looked up once per column instead of per entry
+    std::vector<int> row_of_column(E.ColMap().NumMyElements());
+    for (unsigned int c = 0; c < row_of_column.size(); ++c)
+      row_of_column[c] = E.RowMap().LID(E.ColMap().GID(c));
     // f(i, j, A_ij) for the entries of A that couple two dofs of one line
     auto for_each_line_entry = [&](const auto &f)
     {
@@ -152,7 +156,7 @@ public:
         E.ExtractMyRowView(i, count, values, columns);
         for (int c = 0; c < count; ++c)
         {
-          const int j = E.RowMap().LID(E.ColMap().GID(columns[c]));
+          const int j = row_of_column[columns[c]];
           if (j >= 0 && line_of[j] == line_of[i])
             f(i, unsigned(j), values[c]);
         }
@@ -197,35 +201,67 @@ public:
 
   void vmult(VectorType &dst, const VectorType &src) const
   {
-    const unsigned int w = bandwidth + 1;
-    const double *b = src.begin();
-    double *x = dst.begin();
+    switch (bandwidth)
+    {
+    case 1:
+      solve<1>(dst.begin(), src.begin());
+      break;
+    case 2:
+      solve<2>(dst.begin(), src.begin());
+      break;
+    case 3:
+      solve<3>(dst.begin(), src.begin());
+      break;
+    default:
+      solve<0>(dst.begin(), src.begin());
+    }
+  }
+
+private:
+  /// x = (L D L^T)^-1 b line by line: L y = b forward, then x = D^-1 y - L^T x backward (the
+  /// scaling by D^-1 done in the backward sweep, the same operations in the same order as three
+  /// separate sweeps). B: the bandwidth as a constant (the rows past the first B of a line
+  /// have a full band, an unrolled loop); 0: `bandwidth` at run time.
+  template <unsigned int B>
+  void solve(double *x, const double *b) const
+  {
+    const unsigned int band_width = B > 0 ? B : bandwidth, w = band_width + 1;
+    const double *band_data = band.data();
     for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
     {
       const unsigned int first = lines->start[k], last = lines->start[k + 1];
       for (unsigned int p = first; p < last; ++p) // L y = b
       {
-        const double *row = &band[std::size_t(p) * w];
+        const double *row = band_data + std::size_t(p) * w;
         double v = b[p];
-        const unsigned int reach = std::min(bandwidth, p - first);
-        for (unsigned int d = 1; d <= reach; ++d)
-          v -= row[d] * x[p - d];
+        if (B > 0 && p - first >= B)
+          for (unsigned int d = 1; d <= B; ++d)
+            v -= row[d] * x[p - d];
+        else
+        {
+          const unsigned int reach = std::min(band_width, p - first);
+          for (unsigned int d = 1; d <= reach; ++d)
+            v -= row[d] * x[p - d];
+        }
         x[p] = v;
       }
-      for (unsigned int p = first; p < last; ++p) // D z = y
-        x[p] *= band[std::size_t(p) * w];
-      for (unsigned int p = last; p-- > first;) // L^T x = z
+      for (unsigned int p = last; p-- > first;) // x = D^-1 y - L^T x
       {
-        double v = x[p];
-        const unsigned int reach = std::min(bandwidth, last - 1 - p);
-        for (unsigned int d = 1; d <= reach; ++d)
-          v -= band[std::size_t(p + d) * w + d] * x[p + d];
+        double v = x[p] * band_data[std::size_t(p) * w];
+        if (B > 0 && last - 1 - p >= B)
+          for (unsigned int d = 1; d <= B; ++d)
+            v -= band_data[std::size_t(p + d) * w + d] * x[p + d];
+        else
+        {
+          const unsigned int reach = std::min(band_width, last - 1 - p);
+          for (unsigned int d = 1; d <= reach; ++d)
+            v -= band_data[std::size_t(p + d) * w + d] * x[p + d];
+        }
         x[p] = v;
       }
     }
   }
 
-private:
   const RadialLines *lines = nullptr;
   unsigned int bandwidth = 0;
   std::vector<double> band;
