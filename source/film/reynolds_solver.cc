@@ -184,13 +184,28 @@ void ReynoldsSolver::assemble_system()
       unused(dofs_per_cell, dofs_per_cell);
   Vector<double> cell_rhs(dofs_per_cell);
   std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+  // Full film: the loads' parts at p = 0 and their weights in p at the same points
+  // (AffineLoadSums), so that compute_loads() does not evaluate the film everywhere again.
+  const LoadIntegrator load_integrator(*this);
+  affine_loads.reset(load_integrator.affine_applies(), locally_relevant_dofs.n_elements(),
+                     dofs_per_cell);
+  std::vector<unsigned int> relevant_index(dofs_per_cell);
+  std::function<void(unsigned int, const LocalFilm &)> at_point;
+  if (affine_loads.valid)
+    at_point = [&](const unsigned int q, const LocalFilm &f)
+    { load_integrator.add_affine_point(affine_loads, fe_values, q, f); };
 
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      // the full-film pressure matrix and Couette + squeeze right-hand side
-      cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs);
       cell->get_dof_indices(local_dof_indices);
+      if (affine_loads.valid)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
+      // the full-film pressure matrix and Couette + squeeze right-hand side
+      cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
+      if (affine_loads.valid)
+        affine_loads.add_cell(relevant_index);
       constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
                                              system_matrix, system_rhs);
     }
@@ -397,10 +412,10 @@ double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator 
 // Reynolds (Swift-Stieber): p_j = p_cav + P u_j with the complementarity min(u_j, R_j/J_jj) = 0,
 // solved by the primal-dual active-set method (Hintermueller, Ito & Kunisch 2002).
 
-void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
-                                        const DoFHandler<2>::active_cell_iterator &cell,
-                                        const bool with_void, FullMatrix<double> &A,
-                                        FullMatrix<double> &G, Vector<double> &F) const
+void ReynoldsSolver::cell_film_matrices(
+    FEValues<2> &fe_values, const DoFHandler<2>::active_cell_iterator &cell, const bool with_void,
+    FullMatrix<double> &A, FullMatrix<double> &G, Vector<double> &F,
+    const std::function<void(unsigned int, const LocalFilm &)> &at_point) const
 {
   // A: pressure flow, F: full-film Couette + squeeze, G: void-fraction terms (see above). All
   // scaled by 12 mu / C0^3 like the full-film system.
@@ -415,6 +430,8 @@ void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
   for (const unsigned int q : fe_values.quadrature_point_indices())
   {
     const LocalFilm f = local_film(fe_values.quadrature_point(q));
+    if (at_point)
+      at_point(q, f);
     const Tensor<2, 2> K = equation_scale * f.K;
     const double JxW = fe_values.JxW(q);
     for (unsigned int j = 0; j < n; ++j)

@@ -192,10 +192,11 @@ private:
   void solve_cavitation();
   /// Scale of the cavitation models' pressure unknown from the full-film solution.
   double full_film_pressure_scale() const;
-  void cell_film_matrices(dealii::FEValues<2> &fe_values,
-                          const dealii::DoFHandler<2>::active_cell_iterator &cell,
-                          const bool with_void, dealii::FullMatrix<double> &A,
-                          dealii::FullMatrix<double> &G, dealii::Vector<double> &F) const;
+  void cell_film_matrices(
+      dealii::FEValues<2> &fe_values, const dealii::DoFHandler<2>::active_cell_iterator &cell,
+      const bool with_void, dealii::FullMatrix<double> &A, dealii::FullMatrix<double> &G,
+      dealii::Vector<double> &F,
+      const std::function<void(unsigned int, const LocalFilm &)> &at_point = {}) const;
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
   FilmLoads compute_loads() const;
 
@@ -256,6 +257,8 @@ private:
   unsigned int last_iterations = 0;
   mutable dealii::TimerOutput timer;
   std::map<std::string, double> setup_detail;
+  /// The loads of the last assembly as affine functions of p (full film; film_loads.h).
+  AffineLoadSums affine_loads;
 };
 
 /// Error estimate of every load of a degree-k solve from the same solve on a mesh twice as coarse
