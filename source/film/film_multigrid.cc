@@ -267,8 +267,11 @@ private:
   std::vector<double> band;
 };
 using Smoother = PreconditionChebyshev<MatrixType, VectorType, LineJacobi>;
-/// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator.
-constexpr unsigned int eigenvalue_iterations = 12;
+/// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator
+/// (scaled by 1.2 below). 6 and 12 steps gave the same CG iterations at 1.05e6 Q2 dofs (9) and
+/// the same or one fewer on six meshes of degrees 1-3 and Ntheta/Nr = 1-32 (doc/performance.md);
+/// each step is a level product and a line solve.
+constexpr unsigned int eigenvalue_iterations = 6;
 
 /// The level operators: pointers, so that the finest level can be the system matrix itself.
 class LevelMatrices : public MGMatrixBase<VectorType>
