@@ -402,11 +402,29 @@ public:
         sorted_columns[k] = columns[e];
         sorted_values[k] = values[e];
       }
-      auto matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], count.data(), true);
-      for (std::size_t r = 0; r < n_rows; ++r)
-        if (count[r] > 0)
-          matrix->InsertGlobalValues(int(owned.nth_index_in_set(r)), count[r],
-                                     &sorted_values[start[r]], &sorted_columns[start[r]]);
+      std::unique_ptr<Epetra_CrsMatrix> matrix;
+      if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      {
+        // one rank: every column is an owned coarse dof, so the coarse map is the column map
+        // and the entries go in by local index (no column map to build from global indices)
+        const IndexSet &owned_coarse = dof_handler.locally_owned_mg_dofs(l - 1);
+        for (int &c : sorted_columns)
+          c = int(owned_coarse.index_within_set(c));
+        matrix =
+            std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], *maps[l - 1], count.data(), true);
+        for (std::size_t r = 0; r < n_rows; ++r)
+          if (count[r] > 0)
+            matrix->InsertMyValues(int(r), count[r], &sorted_values[start[r]],
+                                   &sorted_columns[start[r]]);
+      }
+      else
+      {
+        matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], count.data(), true);
+        for (std::size_t r = 0; r < n_rows; ++r)
+          if (count[r] > 0)
+            matrix->InsertGlobalValues(int(owned.nth_index_in_set(r)), count[r],
+                                       &sorted_values[start[r]], &sorted_columns[start[r]]);
+      }
       matrix->FillComplete(*maps[l - 1], *maps[l]);
       prolongation[l] = std::move(matrix);
     }

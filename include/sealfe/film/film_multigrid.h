@@ -20,9 +20,10 @@ namespace sealfe
 /// are re-discretisations of the same operator on the coarser levels of the mesh (K evaluated at
 /// the level cells' quadrature points), Chebyshev smoothing around radial line Jacobi (each
 /// line of dofs at one angle solved exactly: the cells are long in theta) on every level, KLU
-/// on the coarsest level, prolongation by the finite-element embedding
-/// (MGTransferPrebuilt). The finest level is the system matrix itself when the level and active
-/// numberings coincide (always, so far, on a globally refined mesh; else it is assembled too).
+/// on the coarsest level, prolongation by the finite-element embedding (Epetra matrices built
+/// from the parent cells; MGTransferPrebuilt where the finest level is not the system). The
+/// finest level takes the active numbering and is the system matrix itself (always, so far, on a
+/// globally refined mesh; else it is assembled too).
 class FilmMultigrid
 {
 public:
