@@ -414,7 +414,9 @@ void JFOSolver::warm_start()
   // at this mesh's nodes; on the coarsest mesh from the full film: a = (p - p_cav)/P where
   // positive, else a = 0 with a small void.
   // The full film is solved only when there is no coarse start (ReynoldsSolver::run does not).
-  const bool sequenced = s.dof_handler.n_dofs() > 200 &&
+  const char *lim = std::getenv("SEALFE_JFO_LEVELS");
+  const bool level_ok = !lim || s.current_coarsening + 1 <= unsigned(std::atoi(lim));
+  const bool sequenced = s.dof_handler.n_dofs() > 200 && level_ok &&
                          s.mesh_parameters.can_coarsen(s.current_coarsening + 1) && coarse_start();
   if (!sequenced)
   {
@@ -478,8 +480,13 @@ bool JFOSolver::coarse_start()
                                  {&coarse.locally_relevant_solution, &coarse.locally_relevant_void},
                                  indices, nested)))
   {
-    // any mesh, any number of ranks: deal.II's point search (at 1e6 points a third of the JFO
-    // time, doc/performance.md)
+    // other meshes on one rank (the regenerated coarser gmsh meshes): a search over the cells'
+    // bounding boxes; any mesh on several ranks: deal.II's point search (at 1e6 points a third
+    // of the JFO time, doc/performance.md; 25 s of 36 s for 1e5 points on a gmsh mesh)
+    if (std::getenv("SEALFE_OLD_SEARCH") == nullptr && values_at_points(*coarse.mapping, coarse.dof_handler,
+                         {&coarse.locally_relevant_solution, &coarse.locally_relevant_void},
+                         points, nested))
+      goto found;
     Utilities::MPI::RemotePointEvaluation<2> cache;
     pressure = VectorTools::point_values<1>(*coarse.mapping, coarse.dof_handler,
                                             coarse.locally_relevant_solution, points, cache);
@@ -487,6 +494,7 @@ bool JFOSolver::coarse_start()
         VectorTools::point_values<1>(cache, coarse.dof_handler, coarse.locally_relevant_void);
     all_found = cache.all_points_found();
   }
+found:
   if (!nested.empty())
   {
     pressure = std::move(nested[0]);
