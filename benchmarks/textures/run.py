@@ -218,7 +218,7 @@ def plot(rows):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    labels = list(dict.fromkeys(r["label"] for r in rows))
+    labels = sorted(dict.fromkeys(r["label"] for r in rows), key=lambda l: (l != "before", l))
     cases = list(dict.fromkeys(r["case"] for r in rows))
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.8))
     width = 0.8 / (len(labels) + 1)
@@ -231,12 +231,13 @@ def plot(rows):
             x = i + (j - len(labels) / 2) * width
             # JFO in-process time split into its stages; the full film beside it
             bottom = 0
-            parts = (("jfo coarse levels", "tab:orange"), ("jfo linear solver setup", "tab:red"),
+            parts = (("jfo setup", "tab:olive"), ("jfo coarse levels", "tab:orange"), ("jfo linear solver setup", "tab:red"),
                      ("jfo assembly", "tab:purple"), ("jfo cell matrices", "tab:pink"))
             for key, colour in parts:
                 v = r.get(key) or 0
                 axes[0].bar(x, v, width, bottom=bottom, color=colour,
-                            label=key[4:] if i == 0 and j == 0 else None)
+                            label=key[4:] + (" (mesh, dofs; gmsh)" if key == "jfo setup" else "")
+                            if i == 0 and j == 0 else None)
                 bottom += v
             axes[0].bar(x, r["jfo_inprocess"] - bottom, width, bottom=bottom, color="tab:gray",
                         label="rest of JFO" if i == 0 and j == 0 else None)
