@@ -215,12 +215,13 @@ TEST(FeatureMesh, ValuesAtPointsOfAnotherMesh)
   // cells reproduces every function linear in x and y exactly (x and y are themselves in the
   // mapped space), so the interpolant of f = 1 + 2x - 3y evaluated at the support points of an
   // unrelated distorted mesh of the same rectangle is f there, up to round-off and the inverse
-  // mapping's Newton tolerance. Points on the boundary lie on shared edges or corners.
+  // mapping's Newton tolerance. Both meshes keep the rectangle's boundary (points there lie on
+  // shared edges or corners).
   Triangulation<2> coarse_tria, other_tria;
   GridGenerator::subdivided_hyper_rectangle(coarse_tria, {5, 4}, Point<2>(0, 0), Point<2>(2, 1));
-  GridTools::distort_random(0.25, coarse_tria, false, 7);
+  GridTools::distort_random(0.25, coarse_tria, true, 7);
   GridGenerator::subdivided_hyper_rectangle(other_tria, {13, 7}, Point<2>(0, 0), Point<2>(2, 1));
-  GridTools::distort_random(0.3, other_tria, false, 11);
+  GridTools::distort_random(0.3, other_tria, true, 11);
   const FE_Q<2> fe(2);
   DoFHandler<2> coarse(coarse_tria), other(other_tria);
   coarse.distribute_dofs(fe);
