@@ -146,6 +146,20 @@ bool AnnulusMesh::can_coarsen(const unsigned int coarsening) const
   return radial_cells % f == 0 && circumferential_cells % f == 0 && circumferential_cells / f >= 3;
 }
 
+bool AnnulusMesh::sequences_jfo(const unsigned int coarsening, const double ri,
+                                const double ro) const
+{
+  if (coarsening <= global_refinements)
+    return true;
+  if (!mesh_file.empty())
+    return false;
+  if (!(alignment.circle_radius > 0))
+    return true;
+  const double f = double(1u << std::min(coarsening - global_refinements, 20u));
+  const double radial = (ro - ri) / radial_cells, around = 2 * M_PI * ro / circumferential_cells;
+  return f * std::max(radial, around) <= alignment.circle_radius * (1 + 1e-9);
+}
+
 double AnnulusMesh::Alignment::shift(const double r) const
 {
   if (spiral_cot == 0)

@@ -414,8 +414,15 @@ void JFOSolver::warm_start()
   // at this mesh's nodes; on the coarsest mesh from the full film: a = (p - p_cav)/P where
   // positive, else a = 0 with a small void.
   // The full film is solved only when there is no coarse start (ReynoldsSolver::run does not).
-  const bool sequenced = s.dof_handler.n_dofs() > 200 &&
-                         s.mesh_parameters.can_coarsen(s.current_coarsening + 1) && coarse_start();
+  // On textured faces the sequencing stops at the coarsest level that still resolves the
+  // dimples, and never regenerates a gmsh mesh (AnnulusMesh::sequences_jfo): such levels gave no
+  // better start (the same global factorisations on the finest mesh) and cost their own solves,
+  // or another gmsh run (doc/textures.md, Cost of JFO on resolved faces).
+  const unsigned int next = s.current_coarsening + 1;
+  const bool sequenced =
+      s.dof_handler.n_dofs() > 200 && s.mesh_parameters.can_coarsen(next) &&
+      s.mesh_parameters.sequences_jfo(next, s.film.inner_radius, s.film.outer_radius) &&
+      coarse_start();
   if (!sequenced)
   {
     s.solve();
@@ -470,27 +477,31 @@ bool JFOSolver::coarse_start()
     }
   std::vector<double> pressure, void_fraction;
   bool all_found = true;
-  // a mesh file refined globally: the coarse level is the same mesh refined once less
-  std::vector<std::vector<double>> nested;
-  if (!values_on_polar_grid(points, pressure, void_fraction) &&
-      (s.settings.mesh.mesh_file.empty() ||
-       !values_from_parent_cells(s.dof_handler, coarse.dof_handler,
-                                 {&coarse.locally_relevant_solution, &coarse.locally_relevant_void},
-                                 indices, nested)))
+  const std::vector<const VectorType *> fields = {&coarse.locally_relevant_solution,
+                                                  &coarse.locally_relevant_void};
+  std::vector<std::vector<double>> values;
+  // the built-in polar grid: cells by (r, theta); a mesh file refined globally: the coarse
+  // level is the same mesh refined once less (parent cells); other meshes on one rank: a search
+  // over the coarse cells' bounding boxes (values_at_points)
+  if (values_on_polar_grid(points, pressure, void_fraction))
+    all_found = true;
+  else if ((!s.settings.mesh.mesh_file.empty() &&
+            values_from_parent_cells(s.dof_handler, coarse.dof_handler, fields, indices, values)) ||
+           values_at_points(*coarse.mapping, coarse.dof_handler, fields, points, values))
   {
-    // any mesh, any number of ranks: deal.II's point search (at 1e6 points a third of the JFO
-    // time, doc/performance.md)
+    pressure = std::move(values[0]);
+    void_fraction = std::move(values[1]);
+  }
+  else
+  {
+    // several ranks: deal.II's point search (at 1e6 points a third of the JFO time,
+    // doc/performance.md; on one rank 25 s of 36 s for 1e5 points on a gmsh mesh)
     Utilities::MPI::RemotePointEvaluation<2> cache;
     pressure = VectorTools::point_values<1>(*coarse.mapping, coarse.dof_handler,
                                             coarse.locally_relevant_solution, points, cache);
     void_fraction =
         VectorTools::point_values<1>(cache, coarse.dof_handler, coarse.locally_relevant_void);
     all_found = cache.all_points_found();
-  }
-  if (!nested.empty())
-  {
-    pressure = std::move(nested[0]);
-    void_fraction = std::move(nested[1]);
   }
   s.coarse_iterations = coarse.cavitation_iterations + coarse.coarse_iterations;
   const auto &coarse_work = coarse.linear_system_solver.statistics();

@@ -1,9 +1,16 @@
 #include <sealfe/film/nested_transfer.h>
 
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/geometry_info.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <boost/geometry/index/rtree.hpp>
+
+#include <limits>
 
 #include <unordered_map>
 
@@ -78,6 +85,73 @@ bool values_from_parent_cells(const DoFHandler<2> &fine, const DoFHandler<2> &co
   for (const bool f : filled)
     if (!f)
       return false;
+  values = std::move(out);
+  return true;
+}
+
+bool values_at_points(const Mapping<2> &mapping, const DoFHandler<2> &dof_handler,
+                      const std::vector<const TrilinosWrappers::MPI::Vector *> &fields,
+                      const std::vector<Point<2>> &points, std::vector<std::vector<double>> &values)
+{
+  if (Utilities::MPI::n_mpi_processes(dof_handler.get_triangulation().get_communicator()) > 1)
+    return false;
+  using Cell = DoFHandler<2>::active_cell_iterator;
+  // boxes from the mapping's support points, widened by a tenth of their size: a curved edge
+  // bulges slightly past its support points
+  std::vector<std::pair<BoundingBox<2>, Cell>> boxes;
+  boxes.reserve(dof_handler.get_triangulation().n_active_cells());
+  for (const auto &cell : dof_handler.active_cell_iterators())
+  {
+    BoundingBox<2> box = mapping.get_bounding_box(cell);
+    const auto &[lo, hi] = box.get_boundary_points();
+    box.extend(0.1 * std::max(hi[0] - lo[0], hi[1] - lo[1]));
+    boxes.emplace_back(box, cell);
+  }
+  const auto tree = pack_rtree(boxes);
+  namespace bgi = boost::geometry::index;
+  const FiniteElement<2> &fe = dof_handler.get_fe();
+  std::vector<std::vector<double>> out(fields.size(), std::vector<double>(points.size()));
+  std::vector<Vector<double>> nodal(fields.size(), Vector<double>(fe.n_dofs_per_cell()));
+  std::vector<std::pair<BoundingBox<2>, Cell>> candidates;
+  Point<2> unit;
+  for (std::size_t q = 0; q < points.size(); ++q)
+  {
+    candidates.clear();
+    tree.query(bgi::intersects(points[q]), std::back_inserter(candidates));
+    if (candidates.empty())
+      // outside every box: the nearest boxes
+      tree.query(bgi::nearest(points[q], 4), std::back_inserter(candidates));
+    Cell best;
+    double best_distance = std::numeric_limits<double>::max();
+    for (const auto &[box, cell] : candidates)
+    {
+      Point<2> u;
+      mapping.transform_points_real_to_unit_cell(cell, make_array_view(&points[q], &points[q] + 1),
+                                                 make_array_view(&u, &u + 1));
+      if (!std::isfinite(u[0]))
+        continue; // the inverse mapping failed: the point is far from this cell
+      const double d = GeometryInfo<2>::distance_to_unit_cell(u);
+      if (d < best_distance)
+      {
+        best_distance = d;
+        best = cell;
+        unit = u;
+      }
+      if (d == 0)
+        break;
+    }
+    if (best_distance == std::numeric_limits<double>::max())
+      return false;
+    unit = GeometryInfo<2>::project_to_unit_cell(unit);
+    for (std::size_t f = 0; f < fields.size(); ++f)
+    {
+      best->get_dof_values(*fields[f], nodal[f]);
+      double value = 0;
+      for (unsigned int j = 0; j < fe.n_dofs_per_cell(); ++j)
+        value += nodal[f][j] * fe.shape_value(j, unit);
+      out[f][q] = value;
+    }
+  }
   values = std::move(out);
   return true;
 }

@@ -150,8 +150,9 @@ TEST(FeatureMesh, DimpleCirclesAreMeshLinesAndTheFilmIsThePolygonal)
 
 TEST(FeatureMesh, JfoMassBalanceOnTheFittedMesh)
 {
-  // JFO with its coarse start: with Global refinements = 1 the first coarse level is the generated
-  // mesh unrefined (nested), the next ones are generated at 2 h, 4 h (non-nested)
+  // JFO with its coarse start: with Global refinements = 1 the coarse level is the generated mesh
+  // unrefined (nested); the start does not go on to meshes generated again at 2 h, 4 h
+  // (AnnulusMesh::sequences_jfo)
   DimpledSeal seal;
   seal.radius = 2e-3;
   seal.degree = 1;
@@ -205,4 +206,44 @@ TEST(FeatureMesh, ValuesFromParentCellsAreTheCoarseFunction)
   std::cout << "values from parent cells vs point values: max difference " << worst << "\n";
   // round-off, and the inverse mapping point_value solves by Newton (to about 1e-12 of a cell)
   EXPECT_LT(worst, 1e-10 * u_serial.linfty_norm());
+}
+
+TEST(FeatureMesh, ValuesAtPointsOfAnotherMesh)
+{
+  using namespace dealii;
+  // The transfer of the JFO coarse start between unrelated meshes on one rank: Q2 on bilinear
+  // cells reproduces every function linear in x and y exactly (x and y are themselves in the
+  // mapped space), so the interpolant of f = 1 + 2x - 3y evaluated at the support points of an
+  // unrelated distorted mesh of the same rectangle is f there, up to round-off and the inverse
+  // mapping's Newton tolerance. Both meshes keep the rectangle's boundary (points there lie on
+  // shared edges or corners).
+  Triangulation<2> coarse_tria, other_tria;
+  GridGenerator::subdivided_hyper_rectangle(coarse_tria, {5, 4}, Point<2>(0, 0), Point<2>(2, 1));
+  GridTools::distort_random(0.25, coarse_tria, true, 7);
+  GridGenerator::subdivided_hyper_rectangle(other_tria, {13, 7}, Point<2>(0, 0), Point<2>(2, 1));
+  GridTools::distort_random(0.3, other_tria, true, 11);
+  const FE_Q<2> fe(2);
+  DoFHandler<2> coarse(coarse_tria), other(other_tria);
+  coarse.distribute_dofs(fe);
+  other.distribute_dofs(fe);
+  auto f = [](const Point<2> &x) { return 1 + 2 * x[0] - 3 * x[1]; };
+  std::map<types::global_dof_index, Point<2>> coarse_support, other_support;
+  const MappingQ1<2> mapping;
+  DoFTools::map_dofs_to_support_points(mapping, coarse, coarse_support);
+  DoFTools::map_dofs_to_support_points(mapping, other, other_support);
+  TrilinosWrappers::MPI::Vector u(complete_index_set(coarse.n_dofs()), MPI_COMM_SELF);
+  for (const auto &[i, x] : coarse_support)
+    u[i] = f(x);
+  std::vector<Point<2>> points;
+  for (const auto &[i, x] : other_support)
+    points.push_back(x);
+  std::vector<std::vector<double>> values;
+  ASSERT_TRUE(values_at_points(mapping, coarse, {&u, &u}, points, values));
+  double worst = 0;
+  for (std::size_t q = 0; q < points.size(); ++q)
+    worst = std::max(
+        {worst, std::abs(values[0][q] - f(points[q])), std::abs(values[1][q] - f(points[q]))});
+  std::cout << "values at points of another mesh: " << points.size() << " points, max error "
+            << worst << "\n";
+  EXPECT_LT(worst, 1e-10);
 }

@@ -80,6 +80,13 @@ public:
   /// cells 2, 4, ... times larger while they stay no larger than the alignment's circles.
   bool can_coarsen(const unsigned int coarsening) const;
 
+  /// True if the JFO coarse start (mesh sequencing) goes on to the level `coarsening` (which
+  /// must exist, can_coarsen): a level that only drops global refinements, or a built-in grid
+  /// whose cells (mean size in r and around the outer circle) are no larger than the dimples'
+  /// radius; never a regenerated gmsh mesh (gmsh runs again, for no better start) nor a built-in
+  /// grid that no longer resolves the dimples (doc/textures.md, Cost of JFO on resolved faces).
+  bool sequences_jfo(const unsigned int coarsening, const double ri, const double ro) const;
+
   /// Mesh size (m) of the gmsh mesh generated for `coarsening` levels coarser than asked for
   /// (Mesh size > 0 and coarsening beyond the global refinements), else 0.
   double generated_size(const unsigned int coarsening) const;
