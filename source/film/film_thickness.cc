@@ -175,7 +175,8 @@ FilmThickness::Extremum extremum(const FilmThickness &h, const bool maximum)
     // Surface features (recesses) are left out: they never bring the faces closer.
     const auto film = [&](const double r, const double theta)
     {
-      const double v = h.analytic_value(r, theta) + h.expression->value(r, theta + h.frame_angle, h.time);
+      const double v =
+          h.analytic_value(r, theta) + h.expression->value(r, theta + h.frame_angle, h.time);
       return maximum ? -v : v;
     };
     const unsigned int nr = 32, nt = 2048;

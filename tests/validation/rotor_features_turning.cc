@@ -24,22 +24,28 @@ namespace
 using namespace sealfe;
 using namespace sealfe::test;
 
-constexpr unsigned int n_pads = 10;
+// Few pads: the loads' dependence on the rotor angle is a product of the tilt's first harmonic
+// with the pads' N-th, so it grows like (tilt ro / h)^(N - 1); three pads show it plainly.
+constexpr unsigned int n_pads = 3;
+constexpr double ambient = 1e4; // Pa
 
-/// Ten Rayleigh pads on the rotor (RayleighPadSeal: dam 25..35 mm, land film 2 um, 10 x 8 cells
-/// per pad row, degree 2, 3362 dofs), drawn from `phase`, 1e5 Pa on both circles, rotor 100
-/// rad/s. With `stator_pattern` the stator-frame film has every part that must turn: 3 waves of
-/// 0.2 um and a formula with an angle, a radius and the time in it.
+/// Three Rayleigh pads on the rotor (RayleighPadSeal: dam 25..35 mm, land film 2 um, 16 x 8
+/// cells per pad, degree 2), drawn from `phase`, 1e4 Pa on both circles (p_cav = 0), rotor
+/// 100 rad/s. With `stator_pattern` the stator-frame film has every part that must turn: 3 waves
+/// of 0.2 um and a formula with an angle, a radius and the time in it.
 FilmSettings pad_film(const double phase, const bool stator_pattern, const Cavitation cavitation)
 {
   RayleighPadSeal seal;
   seal.pads = n_pads;
+  seal.cells_per_pad = 16;
   FilmSettings s = seal.settings();
   auto features = std::make_shared<SurfaceFeatures>(*s.geometry.features);
   features->face = SurfaceFeatures::Face::rotor;
   features->phase = phase;
   s.geometry.features = features;
-  s.conditions.inner_pressure = s.conditions.outer_pressure = 1e5;
+  // a low ambient (loads above it): the diverging parts of the tilted pads cavitate under JFO
+  s.conditions.inner_pressure = s.conditions.outer_pressure = ambient;
+  s.conditions.reference_pressure = ambient;
   s.cavitation.model = cavitation;
   s.cavitation.pressure = 0;
   if (stator_pattern)
@@ -96,10 +102,9 @@ double departure(const FilmLoads &a, const FilmLoads &b, const Scales &s)
 
 void print(const char *what, const FilmLoads &l)
 {
-  std::cout << what << ": force " << l.force_z << " N, moments " << l.moment_x << ", "
-            << l.moment_y << " N m, leakage " << l.leakage_inner << ", " << l.leakage_outer
-            << " m^3/s, friction " << l.friction_torque << " N m, cavitated "
-            << l.cavitated_fraction << "\n";
+  std::cout << what << ": force " << l.force_z << " N, moments " << l.moment_x << ", " << l.moment_y
+            << " N m, leakage " << l.leakage_inner << ", " << l.leakage_outer << " m^3/s, friction "
+            << l.friction_torque << " N m, cavitated " << l.cavitated_fraction << "\n";
 }
 
 // (a) Frame invariance. The loads of the pads turned by phi (solved in their frame, the stator's
@@ -108,10 +113,11 @@ void print(const char *what, const FilmLoads &l)
 // two meshes are turned copies of each other: the discrete problems are the same up to
 // round-off). Tolerance 1e-8: the JFO Newton tolerance (1e-10 relative mass residual) with
 // margin; the full film is a direct solve. The snapshot (the loads at rotor angle 0, what the
-// transients used before the features turned) departs by orders of magnitude more.
+// transients used before the features turned) must depart by orders of magnitude more (else the
+// test proves nothing).
 TEST(RotorFeatures, TurnedRotorIsTheStationaryFaceWithThePadsAtPhasePlusTheAngle)
 {
-  const double phi = 0.37; // not a multiple of the period 2 pi / 10
+  const double phi = 0.37; // not a multiple of the period 2 pi / 3
   for (const Cavitation cavitation : {Cavitation::none, Cavitation::jfo})
   {
     const FiniteElementFilm turning(pad_film(0, true, cavitation), MPI_COMM_WORLD);
@@ -128,7 +134,7 @@ TEST(RotorFeatures, TurnedRotorIsTheStationaryFaceWithThePadsAtPhasePlusTheAngle
     std::cout << "departure from the pads drawn at phi: " << d << " (snapshot: " << d_snapshot
               << ")\n";
     EXPECT_LT(d, 1e-8);
-    EXPECT_GT(d_snapshot, 1e-3);
+    EXPECT_GT(d_snapshot, 1e-4);
     if (cavitation == Cavitation::jfo)
       EXPECT_GT(b.cavitated_fraction, 0.0);
 
@@ -153,7 +159,7 @@ TEST(RotorFeatures, TurnedRotorIsTheStationaryFaceWithThePadsAtPhasePlusTheAngle
   }
 }
 
-// (b) Periodicity: ten identical pads turned by 2 pi / 10 more are the same face, so the loads
+// (b) Periodicity: three identical pads turned by 2 pi / 3 more are the same face, so the loads
 // repeat (to solver tolerance: the mesh has the pads' symmetry); half a period on they differ
 // (the pads on a tilted, wavy film are not rotationally invariant: else (a) proves nothing).
 TEST(RotorFeatures, LoadsRepeatAfterOnePadPeriod)
@@ -176,8 +182,9 @@ TEST(RotorFeatures, LoadsRepeatAfterOnePadPeriod)
 
 // (c) Axisymmetric stator film (no tilt, no waviness; coning and a formula in r and t only): the
 // turned face is the same face, so force, leakages and friction do not depend on phi, and the
-// moments of ten pads vanish by symmetry at every phi (exact; to round-off and solver
-// tolerance). This case was exact before the features turned too: it guards the turned path.
+// moments of three pads vanish by symmetry at every phi (exact; to round-off and solver
+// tolerance: the moments' scale is force x ro). This case was exact before the features turned too:
+// it guards the turned path.
 TEST(RotorFeatures, AxisymmetricFilmLoadsDoNotDependOnTheRotorAngle)
 {
   FilmSettings settings = pad_film(0, false, Cavitation::jfo);
@@ -206,7 +213,7 @@ TEST(RotorFeatures, AxisymmetricFilmLoadsDoNotDependOnTheRotorAngle)
 // omega t^2 / (2 t1) on the ramp, omega (t - t1/2) after it), the stator held tilted in space.
 // The film's moments in the inertial frame are those of the stationary face with the pads drawn
 // at phi(t) (built independently), in both integration frames (inertial, turning with the
-// shaft); at constant speed they repeat after T = 2 pi / (N omega) = 6.28 ms, and half of T on
+// shaft); at constant speed they repeat after T = 2 pi / (N omega) = 20.9 ms, and half of T on
 // they differ: the moments oscillate at N omega.
 TEST(RotorFeatures, TransientMomentsOscillateAtThePadFrequency)
 {
@@ -219,11 +226,11 @@ TEST(RotorFeatures, TransientMomentsOscillateAtThePadFrequency)
   seal.runout.tilt = 0;
   seal.thermal.model = ThermalConing::Model::none;
   seal.ramps.speed = Ramp{0, omega, t1, 1e300, 1e300};
-  seal.ramps.outer_pressure = Ramp{1e5, 1e5, 0, 1e300, 1e300};
-  seal.ramps.inner_pressure = Ramp{1e5, 1e5, 0, 1e300, 1e300};
-  seal.contact = FaceContact(AsperityContact(AsperityContact::Model::none,
-                                             AsperityContactParameters()),
-                             settings.geometry.inner_radius, settings.geometry.outer_radius, 8, 96);
+  seal.ramps.outer_pressure = Ramp{ambient, ambient, 0, 1e300, 1e300};
+  seal.ramps.inner_pressure = Ramp{ambient, ambient, 0, 1e300, 1e300};
+  seal.contact =
+      FaceContact(AsperityContact(AsperityContact::Model::none, AsperityContactParameters()),
+                  settings.geometry.inner_radius, settings.geometry.outer_radius, 8, 96);
   const auto tilt = tilt_vector(1.7e-5, 0.8); // the relative tilt, fixed in space
   const double period = 2 * M_PI / (n_pads * omega);
 
