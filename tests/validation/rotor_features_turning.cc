@@ -211,14 +211,23 @@ TEST(RotorFeatures, AxisymmetricFilmLoadsDoNotDependOnTheRotorAngle)
 // (d) In the transient (StatorTransient::sample, the film evaluation the integrator calls): the
 // rotor has turned by phi(t) = Int omega dt (speed ramped 0 -> 100 rad/s over 20 ms: phi =
 // omega t^2 / (2 t1) on the ramp, omega (t - t1/2) after it), the stator held tilted in space.
-// The film's moments in the inertial frame are those of the stationary face with the pads drawn
-// at phi(t) (built independently), in both integration frames (inertial, turning with the
-// shaft); at constant speed they repeat after T = 2 pi / (N omega) = 20.9 ms, and half of T on
-// they differ: the moments oscillate at N omega.
+// The stator carries 3 waves. The film's moments in the inertial frame are those of the
+// stationary face with the pads drawn at phi(t) (built independently), in both integration
+// frames (inertial, turning with the shaft); at constant speed they repeat after T = 2 pi / (N
+// omega) = 20.9 ms, and half of T on they differ: the moments oscillate at N omega.
 TEST(RotorFeatures, TransientMomentsOscillateAtThePadFrequency)
 {
   const double omega = 100, t1 = 0.02;
-  const FilmSettings settings = pad_film(0, false, Cavitation::none);
+  // the pads and 3 waves of 0.2 um on the stator (fixed in space, in both integration frames)
+  const auto wavy_pads = [](const double phase)
+  {
+    FilmSettings s = pad_film(phase, false, Cavitation::none);
+    s.geometry.wave_amplitude = 0.2e-6;
+    s.geometry.wave_number = 3;
+    s.geometry.wave_phase = 0.4;
+    return s;
+  };
+  const FilmSettings settings = wavy_pads(0);
   const FiniteElementFilm film(settings, MPI_COMM_WORLD);
   FlexibleStatorSeal seal;
   seal.geometry = settings.geometry;
@@ -243,7 +252,7 @@ TEST(RotorFeatures, TransientMomentsOscillateAtThePadFrequency)
   {
     // the stationary face with the pads at phi(t), the stator's tilt where it is
     const double phi = rotor_angle(t);
-    const FiniteElementFilm placed(pad_film(phi, false, Cavitation::none), MPI_COMM_WORLD);
+    const FiniteElementFilm placed(wavy_pads(phi), MPI_COMM_WORLD);
     FilmState state = FilmState::from(settings.geometry, settings.conditions);
     state.tilt_x = tilt[0];
     state.tilt_y = tilt[1];
