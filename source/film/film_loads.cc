@@ -87,7 +87,17 @@ LoadIntegrator::LoadIntegrator(const ReynoldsSolver &solver)
 
 FilmLoads LoadIntegrator::loads() const
 {
+  if (affine_applies() && solver.affine_loads.valid)
+    return affine_loads();
   return integrate({nullptr}, {}, {})[0];
+}
+
+bool LoadIntegrator::affine_applies() const
+{
+  // half-Sommerfeld clips p in the loads; reynolds and jfo are nonlinear. Rough faces keep the
+  // point-by-point integration, so that the count of flow-factor evaluations held at their
+  // validity limit (summary.json) stays that of the loads' own pass.
+  return solver.cavitation.model == Cavitation::none && solver.flow_factors.is_smooth();
 }
 
 LoadIntegrator::VectorType LoadIntegrator::cavitation_indicator() const
@@ -111,6 +121,183 @@ LoadIntegrator::VectorType LoadIntegrator::cavitation_indicator() const
 // 9 cavitated area, 10 squeeze flow, 11 contact force, 12 contact Mx, 13 contact My, 14 real
 // contact area, 15 undershoot force int min(p - p_cav, 0) dA.
 constexpr unsigned int n_sums = 16;
+
+void AffineLoadSums::reset(const bool valid_in, const std::size_t n_relevant_dofs,
+                           const unsigned int dofs_per_cell)
+{
+  valid = valid_in;
+  constant.clear();
+  weight.clear();
+  if (!valid)
+    return;
+  constant.assign(n_sums, 0.0);
+  weight.assign(n_linear * n_relevant_dofs, 0.0);
+  cell_weight.assign(n_linear * dofs_per_cell, 0.0);
+}
+
+void AffineLoadSums::add_cell(const std::vector<unsigned int> &relevant_index)
+{
+  for (unsigned int i = 0; i < relevant_index.size(); ++i)
+    for (unsigned int m = 0; m < n_linear; ++m)
+    {
+      weight[std::size_t(n_linear) * relevant_index[i] + m] += cell_weight[n_linear * i + m];
+      cell_weight[n_linear * i + m] = 0;
+    }
+}
+
+template <typename Film>
+void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const FEValues<2> &fe_values,
+                                      const unsigned int q, const Film &f) const
+{
+  // The sums at p = 0 by the same point functions as integrate()
+  PointState x;
+  x.x = fe_values.quadrature_point(q);
+  x.f = f;
+  x.JxW = fe_values.JxW(q);
+  x.p = x.v = x.indicator = x.tau = 0;
+  const PointPerturbation none;
+  add_pressure_loads(x, none, sums.constant);
+  add_friction_and_squeeze(x, none, sums.constant);
+  // and their slopes in p: load_p = p - p_ref + contact_p in the force and moments
+  // (add_pressure_loads, not clipped in a full film); the Poiseuille part of the friction,
+  // -tau_p(h, dp/dx) r with tau_p linear in dp/dx = dp/dtheta / r (add_friction_and_squeeze).
+  const double X = x.x[0], Y = x.x[1], JxW = x.JxW;
+  const double w[5] = {JxW, Y * JxW, -X * JxW, -(X * cos_psi + Y * sin_psi) * JxW,
+                       (Y * cos_psi - X * sin_psi) * JxW};
+  const double friction =
+      -solver.flow_factors.rotor_shear_stress(std::max(f.h, 1e-300), mu, 0.0, 0.0, 1.0) *
+      friction_face() * JxW;
+  const unsigned int n = fe_values.get_fe().n_dofs_per_cell();
+  double *cell_weight = sums.cell_weight.data();
+  for (unsigned int i = 0; i < n; ++i, cell_weight += AffineLoadSums::n_linear)
+  {
+    const double phi = fe_values.shape_value(i, q);
+    for (unsigned int m = 0; m < 5; ++m)
+      cell_weight[m] += w[m] * phi;
+    const Tensor<1, 2> g = fe_values.shape_grad(i, q);
+    cell_weight[5] += friction * (-Y * g[0] + X * g[1]);
+  }
+}
+template void LoadIntegrator::add_affine_point<ReynoldsSolver::LocalFilm>(
+    AffineLoadSums &, const FEValues<2> &, unsigned int, const ReynoldsSolver::LocalFilm &) const;
+
+std::vector<bool> LoadIntegrator::boundary_vertices() const
+{
+  // the ghost layer holds every cell that shares a vertex with an owned one
+  const auto &tria = solver.dof_handler.get_triangulation();
+  std::vector<bool> boundary_vertex(tria.n_vertices(), false);
+  for (const auto &cell : tria.active_cell_iterators())
+    if (!cell->is_artificial() && cell->at_boundary())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          for (const unsigned int v : cell->face(f)->vertex_indices())
+            boundary_vertex[cell->face(f)->vertex_index(v)] = true;
+  return boundary_vertex;
+}
+
+double LoadIntegrator::friction_face() const
+{
+  // Surface features on the rotor: its face has step walls whose pressure the shear integral
+  // misses. By the torque balance of the film the torque resisting the rotor is the one that
+  // drags the smooth stator face, whose Poiseuille shear has the opposite sign.
+  return solver.film.features && solver.film.features->face == SurfaceFeatures::Face::rotor ? -1.0
+                                                                                            : 1.0;
+}
+
+FilmLoads LoadIntegrator::affine_loads() const
+{
+  const ReynoldsSolver &s = solver;
+  const AffineLoadSums &a = s.affine_loads;
+  std::vector<double> sums = a.constant;
+  std::vector<double> p(s.locally_relevant_dofs.n_elements());
+  {
+    std::size_t k = 0;
+    for (const auto i : s.locally_relevant_dofs)
+      p[k++] = s.locally_relevant_solution[i];
+  }
+  double linear[AffineLoadSums::n_linear] = {};
+  for (std::size_t k = 0; k < p.size(); ++k)
+    for (unsigned int m = 0; m < AffineLoadSums::n_linear; ++m)
+      linear[m] += a.weight[AffineLoadSums::n_linear * k + m] * p[k];
+  for (unsigned int m = 0; m < AffineLoadSums::n_linear; ++m)
+    sums[AffineLoadSums::linear_sums[m]] += linear[m];
+
+  // Leakages: the residual in the cells with a vertex on a circle (as in integrate()); the
+  // pressure range at the quadrature points of every cell (the same sums as
+  // FEValues::get_function_values: the values of FE_Q's shape functions do not depend on the
+  // cell) and at the nodes.
+  const QGauss<2> quadrature(s.polynomial_degree + 2);
+  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n_q = quadrature.size(), dofs_per_cell = s.fe->n_dofs_per_cell();
+  FullMatrix<double> shape(dofs_per_cell, n_q);
+  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+    for (unsigned int q = 0; q < n_q; ++q)
+      shape(i, q) = s.fe->shape_value(i, quadrature.point(q));
+  const std::vector<bool> boundary_vertex = boundary_vertices();
+  std::vector<double> p_q(n_q);
+  std::vector<Tensor<1, 2>> grad_p(n_q), shape_grad(dofs_per_cell);
+  std::vector<double> shape_value(dofs_per_cell);
+  std::vector<types::global_dof_index> dofs(dofs_per_cell);
+  Vector<double> cell_p(dofs_per_cell), local_residual(dofs_per_cell);
+  double p_min = std::numeric_limits<double>::max(), p_max = -p_min, p_min_nodal = p_min;
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        cell_p(i) = p[s.locally_relevant_dofs.index_within_set(dofs[i])];
+      std::fill(p_q.begin(), p_q.end(), 0.0);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        for (unsigned int q = 0; q < n_q; ++q)
+          p_q[q] += cell_p(i) * shape(i, q);
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        p_min = std::min(p_min, p_q[q]);
+        p_max = std::max(p_max, p_q[q]);
+      }
+      bool boundary_cell = false;
+      for (const unsigned int v : cell->vertex_indices())
+        boundary_cell = boundary_cell || boundary_vertex[cell->vertex_index(v)];
+      if (!boundary_cell)
+        continue;
+      fe_values.reinit(cell);
+      fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+      local_residual = 0;
+      PointState x;
+      x.v = x.indicator = x.tau = 0;
+      const PointPerturbation none;
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        x.x = fe_values.quadrature_point(q);
+        x.f = s.local_film(x.x);
+        x.JxW = fe_values.JxW(q);
+        x.p = p_q[q];
+        x.grad_p = grad_p[q];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          shape_grad[i] = fe_values.shape_grad(i, q);
+          shape_value[i] = fe_values.shape_value(i, q);
+        }
+        add_residual(x, none, shape_grad, shape_value, local_residual);
+      }
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        if (s.inner_boundary_dofs.is_element(dofs[i]))
+          sums[5] += local_residual(i);
+        if (s.outer_boundary_dofs.is_element(dofs[i]))
+          sums[6] += local_residual(i);
+      }
+    }
+  for (const auto i : s.locally_owned_dofs)
+  {
+    p_min_nodal = std::min(p_min_nodal, s.locally_relevant_solution[i]);
+    p_max = std::max(p_max, s.locally_relevant_solution[i]);
+  }
+  p_min = std::min(p_min, p_min_nodal);
+  return finish(sums, true, p_min, p_max, p_min_nodal);
+}
 
 void LoadIntegrator::add_pressure_loads(const PointState &x, const PointPerturbation &d,
                                         std::vector<double> &sum) const
@@ -155,9 +342,7 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   // Surface features on the rotor: its face has step walls whose pressure the shear integral
   // misses. By the torque balance of the film the torque resisting the rotor is the one that
   // drags the smooth stator face, whose Poiseuille shear has the opposite sign.
-  const double face =
-      solver.film.features && solver.film.features->face == SurfaceFeatures::Face::rotor ? -1.0
-                                                                                         : 1.0;
+  const double face = friction_face();
   const double dp_dtheta = face * (-x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1]);
   const double liquid_clamped = std::clamp(liquid, 0.0, 1.0);
   const double u1 = solver.conditions.rotor_speed * r, u2 = solver.conditions.stator_speed * r;
@@ -259,13 +444,7 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
   // Vertices on a boundary face of an owned or ghost cell (the ghost layer holds every cell that
   // shares a vertex with an owned one).
-  std::vector<bool> boundary_vertex(s.dof_handler.get_triangulation().n_vertices(), false);
-  for (const auto &cell : s.dof_handler.get_triangulation().active_cell_iterators())
-    if (!cell->is_artificial() && cell->at_boundary())
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary())
-          for (const unsigned int v : cell->face(f)->vertex_indices())
-            boundary_vertex[cell->face(f)->vertex_index(v)] = true;
+  const std::vector<bool> boundary_vertex = boundary_vertices();
 
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())

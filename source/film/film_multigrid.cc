@@ -1,4 +1,5 @@
 #include <sealfe/film/film_multigrid.h>
+#include <sealfe/film/lap_timer.h>
 #include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/mg_level_object.h>
@@ -19,10 +20,12 @@
 #include <deal.II/multigrid/multigrid.h>
 
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <vector>
 
@@ -138,6 +141,10 @@ public:
       for (unsigned int p = lines->start[k]; p < lines->start[k + 1]; ++p)
         line_of[p] = k;
     }
+    // the row of each column (-1: not owned), looked up once per column instead of per entry
+    std::vector<int> row_of_column(E.ColMap().NumMyElements());
+    for (unsigned int c = 0; c < row_of_column.size(); ++c)
+      row_of_column[c] = E.RowMap().LID(E.ColMap().GID(c));
     // f(i, j, A_ij) for the entries of A that couple two dofs of one line
     auto for_each_line_entry = [&](const auto &f)
     {
@@ -149,7 +156,7 @@ public:
         E.ExtractMyRowView(i, count, values, columns);
         for (int c = 0; c < count; ++c)
         {
-          const int j = E.RowMap().LID(E.ColMap().GID(columns[c]));
+          const int j = row_of_column[columns[c]];
           if (j >= 0 && line_of[j] == line_of[i])
             f(i, unsigned(j), values[c]);
         }
@@ -194,42 +201,77 @@ public:
 
   void vmult(VectorType &dst, const VectorType &src) const
   {
-    const unsigned int w = bandwidth + 1;
-    const double *b = src.begin();
-    double *x = dst.begin();
+    switch (bandwidth)
+    {
+    case 1:
+      solve<1>(dst.begin(), src.begin());
+      break;
+    case 2:
+      solve<2>(dst.begin(), src.begin());
+      break;
+    case 3:
+      solve<3>(dst.begin(), src.begin());
+      break;
+    default:
+      solve<0>(dst.begin(), src.begin());
+    }
+  }
+
+private:
+  /// x = (L D L^T)^-1 b line by line: L y = b forward, then x = D^-1 y - L^T x backward (the
+  /// scaling by D^-1 done in the backward sweep, the same operations in the same order as three
+  /// separate sweeps). B: the bandwidth as a constant (the rows past the first B of a line
+  /// have a full band, an unrolled loop); 0: `bandwidth` at run time.
+  template <unsigned int B>
+  void solve(double *x, const double *b) const
+  {
+    const unsigned int band_width = B > 0 ? B : bandwidth, w = band_width + 1;
+    const double *band_data = band.data();
     for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
     {
       const unsigned int first = lines->start[k], last = lines->start[k + 1];
       for (unsigned int p = first; p < last; ++p) // L y = b
       {
-        const double *row = &band[std::size_t(p) * w];
+        const double *row = band_data + std::size_t(p) * w;
         double v = b[p];
-        const unsigned int reach = std::min(bandwidth, p - first);
-        for (unsigned int d = 1; d <= reach; ++d)
-          v -= row[d] * x[p - d];
+        if (B > 0 && p - first >= B)
+          for (unsigned int d = 1; d <= B; ++d)
+            v -= row[d] * x[p - d];
+        else
+        {
+          const unsigned int reach = std::min(band_width, p - first);
+          for (unsigned int d = 1; d <= reach; ++d)
+            v -= row[d] * x[p - d];
+        }
         x[p] = v;
       }
-      for (unsigned int p = first; p < last; ++p) // D z = y
-        x[p] *= band[std::size_t(p) * w];
-      for (unsigned int p = last; p-- > first;) // L^T x = z
+      for (unsigned int p = last; p-- > first;) // x = D^-1 y - L^T x
       {
-        double v = x[p];
-        const unsigned int reach = std::min(bandwidth, last - 1 - p);
-        for (unsigned int d = 1; d <= reach; ++d)
-          v -= band[std::size_t(p + d) * w + d] * x[p + d];
+        double v = x[p] * band_data[std::size_t(p) * w];
+        if (B > 0 && last - 1 - p >= B)
+          for (unsigned int d = 1; d <= B; ++d)
+            v -= band_data[std::size_t(p + d) * w + d] * x[p + d];
+        else
+        {
+          const unsigned int reach = std::min(band_width, last - 1 - p);
+          for (unsigned int d = 1; d <= reach; ++d)
+            v -= band_data[std::size_t(p + d) * w + d] * x[p + d];
+        }
         x[p] = v;
       }
     }
   }
 
-private:
   const RadialLines *lines = nullptr;
   unsigned int bandwidth = 0;
   std::vector<double> band;
 };
 using Smoother = PreconditionChebyshev<MatrixType, VectorType, LineJacobi>;
-/// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator.
-constexpr unsigned int eigenvalue_iterations = 12;
+/// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator
+/// (scaled by 1.2 below). 6 and 12 steps gave the same CG iterations at 1.05e6 Q2 dofs (9) and
+/// the same or one fewer on six meshes of degrees 1-3 and Ntheta/Nr = 1-32 (doc/performance.md);
+/// each step is a level product and a line solve.
+constexpr unsigned int eigenvalue_iterations = 6;
 
 /// The level operators: pointers, so that the finest level can be the system matrix itself.
 class LevelMatrices : public MGMatrixBase<VectorType>
@@ -273,6 +315,151 @@ public:
   void clear() override { smoothers.resize(0, 0); }
 };
 
+/// Prolongation from each level to the next finer one by the finite-element embedding, with the
+/// columns of the coarse level's boundary dofs zeroed (zero Dirichlet data): the matrices of
+/// MGTransferPrebuilt, built directly as Epetra matrices from one loop over the parent cells
+/// instead of deal.II's generic path (a dynamic sparsity pattern, a FullMatrix copy per child,
+/// set() through the Trilinos wrapper, and the copy indices between the active and level
+/// numberings, which the V-cycle on the system's own numbering does not need: 0.6 s at 1e6 Q2
+/// dofs, doc/performance.md). Built only where every owned row of each finer level is reached
+/// from a parent cell this rank sees (else: build() returns false).
+class LevelTransfer
+{
+public:
+  bool build(const DoFHandler<2> &dof_handler, const MGConstrainedDoFs &constrained_dofs)
+  {
+    const auto &tria = dof_handler.get_triangulation();
+    const auto &fe = dof_handler.get_fe();
+    const MPI_Comm comm = dof_handler.get_communicator();
+    const unsigned int n_levels = tria.n_global_levels(), n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> parent(n), child(n);
+    std::vector<bool> boundary(n);
+    prolongation.clear();
+    prolongation.resize(n_levels);
+    maps.clear();
+    for (unsigned int l = 0; l < n_levels; ++l)
+      maps.push_back(std::make_unique<Epetra_Map>(
+          dof_handler.locally_owned_mg_dofs(l).make_trilinos_map(comm, true)));
+    bool complete = true;
+    for (unsigned int l = 1; l < n_levels; ++l)
+    {
+      const IndexSet &owned = dof_handler.locally_owned_mg_dofs(l);
+      const std::size_t n_rows = owned.n_elements();
+      // (row, column, value) of each owned row, the row from the first child cell that has it
+      std::vector<bool> done(n_rows, false);
+      std::vector<unsigned int> row_of;
+      std::vector<int> columns;
+      std::vector<double> values;
+      row_of.reserve(4 * n_rows);
+      columns.reserve(4 * n_rows);
+      values.reserve(4 * n_rows);
+      for (const auto &cell : dof_handler.mg_cell_iterators_on_level(l - 1))
+        if (cell->has_children() && cell->level_subdomain_id() != numbers::artificial_subdomain_id)
+        {
+          cell->get_mg_dof_indices(parent);
+          for (unsigned int j = 0; j < n; ++j)
+            boundary[j] = constrained_dofs.is_boundary_index(l - 1, parent[j]);
+          for (unsigned int c = 0; c < cell->n_children(); ++c)
+          {
+            const auto child_cell = cell->child(c);
+            if (child_cell->level_subdomain_id() == numbers::artificial_subdomain_id)
+              continue;
+            const FullMatrix<double> &P =
+                fe.get_prolongation_matrix(c, RefinementCase<2>::isotropic_refinement);
+            child_cell->get_mg_dof_indices(child);
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              if (!owned.is_element(child[i]))
+                continue;
+              const auto row = owned.index_within_set(child[i]);
+              if (done[row])
+                continue;
+              done[row] = true;
+              for (unsigned int j = 0; j < n; ++j)
+                if (P(i, j) != 0 && !boundary[j])
+                {
+                  row_of.push_back(row);
+                  columns.push_back(int(parent[j]));
+                  values.push_back(P(i, j));
+                }
+            }
+          }
+        }
+      complete = complete && std::find(done.begin(), done.end(), false) == done.end();
+      // rows in order (counting sort), then one InsertGlobalValues per row
+      std::vector<int> count(n_rows, 0);
+      for (const unsigned int r : row_of)
+        ++count[r];
+      std::vector<std::size_t> start(n_rows + 1, 0);
+      for (std::size_t r = 0; r < n_rows; ++r)
+        start[r + 1] = start[r] + count[r];
+      std::vector<int> sorted_columns(columns.size());
+      std::vector<double> sorted_values(values.size());
+      std::vector<std::size_t> next(start.begin(), start.end() - 1);
+      for (std::size_t e = 0; e < row_of.size(); ++e)
+      {
+        const std::size_t k = next[row_of[e]]++;
+        sorted_columns[k] = columns[e];
+        sorted_values[k] = values[e];
+      }
+      std::unique_ptr<Epetra_CrsMatrix> matrix;
+      if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      {
+        // one rank: every column is an owned coarse dof, so the coarse map is the column map
+        // and the entries go in by local index (no column map to build from global indices)
+        const IndexSet &owned_coarse = dof_handler.locally_owned_mg_dofs(l - 1);
+        for (int &c : sorted_columns)
+          c = int(owned_coarse.index_within_set(c));
+        matrix =
+            std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], *maps[l - 1], count.data(), true);
+        for (std::size_t r = 0; r < n_rows; ++r)
+          if (count[r] > 0)
+            matrix->InsertMyValues(int(r), count[r], &sorted_values[start[r]],
+                                   &sorted_columns[start[r]]);
+      }
+      else
+      {
+        matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], count.data(), true);
+        for (std::size_t r = 0; r < n_rows; ++r)
+          if (count[r] > 0)
+            matrix->InsertGlobalValues(int(owned.nth_index_in_set(r)), count[r],
+                                       &sorted_values[start[r]], &sorted_columns[start[r]]);
+      }
+      matrix->FillComplete(*maps[l - 1], *maps[l]);
+      prolongation[l] = std::move(matrix);
+    }
+    return Utilities::MPI::min(complete ? 1 : 0, comm) == 1;
+  }
+
+  /// dst (level l) += P src (level l - 1)
+  void prolongate_and_add(const unsigned int l, VectorType &dst, const VectorType &src)
+  {
+    VectorType &t = work(l, dst);
+    prolongation[l]->Multiply(false, src.trilinos_vector(), t.trilinos_vector());
+    dst += t;
+  }
+
+  /// dst (level l - 1) += P^T src (level l)
+  void restrict_and_add(const unsigned int l, VectorType &dst, const VectorType &src)
+  {
+    VectorType &t = work(l - 1, dst);
+    prolongation[l]->Multiply(true, src.trilinos_vector(), t.trilinos_vector());
+    dst += t;
+  }
+
+private:
+  std::vector<std::unique_ptr<Epetra_Map>> maps;
+  std::vector<std::unique_ptr<Epetra_CrsMatrix>> prolongation; // [l]: level l - 1 -> l
+  std::map<unsigned int, VectorType> scratch;
+  VectorType &work(const unsigned int l, const VectorType &like)
+  {
+    VectorType &t = scratch[l];
+    if (t.size() != like.size())
+      t.reinit(like, true);
+    return t;
+  }
+};
+
 /// KLU on the coarsest level.
 class CoarseDirect : public MGCoarseGridBase<VectorType>
 {
@@ -293,7 +480,8 @@ struct FilmMultigrid::Data
   MGLevelObject<MatrixType> level_matrices; // the assembled ones
   LevelMatrices operators;
   bool fine_is_system = false;
-  std::unique_ptr<MGTransferPrebuilt<VectorType>> transfer;
+  std::unique_ptr<MGTransferPrebuilt<VectorType>> transfer; // !fine_is_system
+  LevelTransfer level_transfer;                             // fine_is_system
   ChebyshevSmoother smoother;
   CoarseDirect coarse;
   std::unique_ptr<Multigrid<VectorType>> multigrid;
@@ -315,9 +503,9 @@ struct FilmMultigrid::Data
     operators.vmult(l, residual[l], solution[l]);
     residual[l].sadd(-1.0, 1.0, defect[l]);
     defect[l - 1] = 0;
-    transfer->restrict_and_add(l, defect[l - 1], residual[l]);
+    level_transfer.restrict_and_add(l, defect[l - 1], residual[l]);
     v_step(l - 1);
-    transfer->prolongate_and_add(l, solution[l], solution[l - 1]);
+    level_transfer.prolongate_and_add(l, solution[l], solution[l - 1]);
     smoother.smooth(l, solution[l], defect[l]);
   }
 };
@@ -329,6 +517,7 @@ void FilmMultigrid::number_by_radial_lines(DoFHandler<2> &dof_handler, const Map
 {
   const RadialLines lines = find_radial_lines(dof_handler, mapping, numbers::invalid_unsigned_int);
   dof_handler.renumber_dofs(numbers_by_lines(dof_handler.locally_owned_dofs(), lines));
+  active_line_start = lines.start;
 }
 
 bool FilmMultigrid::has_hierarchy(const DoFHandler<2> &dof_handler)
@@ -346,16 +535,20 @@ void FilmMultigrid::clear()
   data.reset();
   dof_handler = nullptr;
   mapping = nullptr;
+  active_line_start.clear();
 }
 
 void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mapping_in,
                           const std::vector<types::boundary_id> &dirichlet_ids)
 {
-  clear();
+  data.reset(); // not clear(): the active lines of number_by_radial_lines are kept
+  times.clear();
+  LapTimer lap(times);
   dof_handler = &dof_handler_in;
   mapping = &mapping_in;
   data = std::make_unique<Data>();
   dof_handler->distribute_mg_dofs();
+  lap("level dofs");
   const auto &tria = dof_handler->get_triangulation();
   const MPI_Comm comm = dof_handler->get_communicator();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
@@ -363,15 +556,63 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   // Every level numbered by radial lines (as the active dofs are, number_by_radial_lines): the
   // line blocks of the smoother are contiguous and the level matrices banded.
   data->lines.resize(n_levels);
+  // The finest level takes the active numbers and lines (every active cell is on it): a cell
+  // loop instead of a second search by support points, and the system matrix is then that
+  // level's operator. Where a level dof would get a number this rank does not own, the finest
+  // level is numbered by its own lines like the others.
+  bool fine_from_active =
+      !active_line_start.empty() &&
+      active_line_start.back() == dof_handler->locally_owned_dofs().n_elements();
+  if (fine_from_active)
+  {
+    const IndexSet &owned_level = dof_handler->locally_owned_mg_dofs(fine),
+                   &owned_active = dof_handler->locally_owned_dofs();
+    std::vector<types::global_dof_index> numbers(owned_level.n_elements(),
+                                                 numbers::invalid_dof_index);
+    const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
+    std::vector<types::global_dof_index> level_dofs(n), active_dofs(n);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        if (cell->level() != int(fine))
+        {
+          fine_from_active = false;
+          break;
+        }
+        cell->get_mg_dof_indices(level_dofs);
+        cell->get_dof_indices(active_dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          if (owned_level.is_element(level_dofs[i]))
+          {
+            if (!owned_active.is_element(active_dofs[i]))
+              fine_from_active = false;
+            numbers[owned_level.index_within_set(level_dofs[i])] = active_dofs[i];
+          }
+      }
+    fine_from_active =
+        fine_from_active && owned_level.n_elements() == owned_active.n_elements() &&
+        std::find(numbers.begin(), numbers.end(), numbers::invalid_dof_index) == numbers.end();
+    fine_from_active = Utilities::MPI::min(fine_from_active ? 1 : 0, comm) == 1;
+    if (fine_from_active)
+    {
+      dof_handler->renumber_dofs(fine, numbers);
+      data->lines[fine].order.resize(owned_active.n_elements());
+      data->lines[fine].start = active_line_start;
+    }
+  }
   for (unsigned int l = 0; l < n_levels; ++l)
   {
+    if (l == fine && fine_from_active)
+      continue;
     data->lines[l] = find_radial_lines(*dof_handler, *mapping, l);
     dof_handler->renumber_dofs(
         l, numbers_by_lines(dof_handler->locally_owned_mg_dofs(l), data->lines[l]));
   }
+  lap("level numbering by lines");
   data->constrained_dofs.initialize(*dof_handler);
   data->constrained_dofs.make_zero_boundary_constraints(
       *dof_handler, std::set<types::boundary_id>(dirichlet_ids.begin(), dirichlet_ids.end()));
+  lap("level boundary dofs");
 
   // The mesh is refined globally, so every active cell is on the finest level. When the level
   // numbering of that level is the active one, the system matrix is the finest level operator
@@ -394,6 +635,16 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
       }
   }
   data->fine_is_system = Utilities::MPI::min(same ? 1 : 0, comm) == 1;
+  lap("fine level check");
+
+  if (data->fine_is_system)
+    data->fine_is_system = data->level_transfer.build(*dof_handler, data->constrained_dofs);
+  if (!data->fine_is_system)
+  {
+    data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
+    data->transfer->build(*dof_handler);
+  }
+  lap("transfer");
 
   data->level_constraints.resize(n_levels);
   data->level_matrices.resize(0, fine);
@@ -415,13 +666,13 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
                                    dof_handler->locally_owned_mg_dofs(l), dsp, comm);
   }
 
-  data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
-  data->transfer->build(*dof_handler);
+  lap("level sparsity");
 }
 
 void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
                             const unsigned int n_gauss, const Parameters &parameters)
 {
+  LapTimer lap(times);
   const auto &tria = dof_handler->get_triangulation();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
   const auto &fe = dof_handler->get_fe();
@@ -465,6 +716,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     matrix.compress(VectorOperation::add);
   }
 
+  lap("level assembly");
   data->operators.matrices.resize(n_levels);
   for (unsigned int l = 0; l < n_levels; ++l)
     data->operators.matrices[l] =
@@ -478,6 +730,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     typename Smoother::AdditionalData smoother_data;
     smoother_data.preconditioner = std::make_shared<LineJacobi>();
     smoother_data.preconditioner->initialize(A, data->lines[l]);
+    lap("line factorisations");
     smoother_data.degree = parameters.smoother_degree;
     smoother_data.smoothing_range = parameters.smoothing_range;
     // Largest eigenvalue of B^-1 A by CG from a random start (Lanczos estimates). deal.II's own
@@ -507,9 +760,11 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       smoother_data.eig_cg_n_iterations = 0;
       smoother_data.max_eigenvalue = 1.2 * largest;
     }
+    lap("eigenvalue estimates");
     data->smoother.smoothers[l].initialize(A, smoother_data);
   }
   data->coarse.direct.factorize(*data->operators.matrices[0]);
+  lap("coarse factorisation");
 
   if (data->fine_is_system && data->defect.max_level() != fine)
   {
@@ -523,11 +778,15 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       data->residual[l].reinit(data->defect[l]);
     }
   }
-  data->multigrid = std::make_unique<Multigrid<VectorType>>(
-      data->operators, data->coarse, *data->transfer, data->smoother, data->smoother);
-  data->preconditioner =
-      std::make_unique<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>>(
-          *dof_handler, *data->multigrid, *data->transfer);
+  if (!data->fine_is_system)
+  {
+    data->multigrid = std::make_unique<Multigrid<VectorType>>(
+        data->operators, data->coarse, *data->transfer, data->smoother, data->smoother);
+    data->preconditioner =
+        std::make_unique<PreconditionMG<2, VectorType, MGTransferPrebuilt<VectorType>>>(
+            *dof_handler, *data->multigrid, *data->transfer);
+  }
+  lap("vectors");
 }
 
 void FilmMultigrid::vmult(VectorType &dst, const VectorType &src) const

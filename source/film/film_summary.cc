@@ -316,6 +316,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   nlohmann::json timings = solver.stage_times();
   summary["error_estimate"] = load_error_estimate(settings, solver, loads, comm, timings);
   summary["stage_wall_time"] = timings;
+  summary["stage_detail_wall_time"] = solver.detail_times();
   return summary;
 }
 

@@ -831,9 +831,12 @@ void JFOSolver::solve()
   // progress on stderr (rank 0) once a solve runs longer than 2 s, then every 2 s
   const auto start = std::chrono::steady_clock::now();
   auto last_report = start;
+  // merits at the start of each iteration: the failure message says how fast the last ten fell
+  std::vector<double> merits;
   for (; it < s.cavitation.maximum_iterations; ++it)
   {
     double merit = assemble(a, v, true);
+    merits.push_back(merit);
     mass_residual = residual.l2_norm() / flow_scale;
     complementarity_residual = complementarity(a_owned, v_owned);
     const auto now = std::chrono::steady_clock::now();
@@ -881,7 +884,30 @@ void JFOSolver::solve()
     m << "Cavitation (jfo): no convergence in " << s.cavitation.maximum_iterations
       << " Newton iterations (relative mass residual " << mass_residual
       << ", complementarity residual " << complementarity_residual << ", tolerance "
-      << s.cavitation.tolerance << "); refine the mesh or raise Cavitation/Maximum iterations";
+      << s.cavitation.tolerance << ")";
+    // A creeping iteration (the merit falling by less than half in ten iterations) is not
+    // helped by more iterations: say so, with the rate, instead of advising a higher cap.
+    constexpr unsigned int window = 10;
+    const double ratio =
+        merits.size() > window ? merits.back() / merits[merits.size() - 1 - window] : 0.0;
+    if (ratio > 0.5)
+    {
+      const double target = 0.5 * s.cavitation.tolerance * s.cavitation.tolerance;
+      m << "; the iteration creeps: its merit fell by only "
+        << std::max(0.0, std::round(100 * (1 - ratio))) << " % in the last " << window
+        << " iterations";
+      if (ratio < 1 && merits.back() > target)
+        m << " (at that rate about "
+          << std::ceil(window * std::log(target / merits.back()) / std::log(ratio))
+          << " more to the tolerance)";
+      m << ", so raising Cavitation/Maximum iterations will not help";
+      if (s.polynomial_degree > 1 && s.settings.geometry.features)
+        m << "; surface features whose steps cut cells in a cavitated zone (dimples on a tilted "
+             "face) can defeat the degree-2 iteration where Polynomial degree = 1 or a mesh "
+             "fitted to the features (Discretization/Mesh size) converges (doc/cavitation.md)";
+    }
+    else
+      m << "; refine the mesh or raise Cavitation/Maximum iterations";
     throw std::runtime_error(m.str());
   }
   s.last_iterations += it;

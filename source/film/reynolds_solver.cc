@@ -1,5 +1,6 @@
 #include <sealfe/film/film_output.h>
 #include <sealfe/film/jfo_solver.h>
+#include <sealfe/film/lap_timer.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/round_off.h>
@@ -70,6 +71,8 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
     system_rhs = 0;
     return;
   }
+  setup_detail.clear();
+  LapTimer lap(setup_detail);
   dof_handler.clear();
   triangulation.clear();
   linear_system_solver.clear();
@@ -83,6 +86,7 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   mesh_parameters.alignment =
       film.features ? film.features->mesh_alignment() : AnnulusMesh::Alignment();
   mesh_parameters.create(triangulation, film.inner_radius, film.outer_radius, coarsening);
+  lap("setup: mesh");
 
   fe = std::make_unique<FE_Q<2>>(polynomial_degree);
   // The mapping's support points come from the polar manifold (a pull-back and push-forward per
@@ -92,13 +96,16 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   auto cached = std::make_unique<MappingQCache<2>>(polynomial_degree);
   cached->initialize(MappingQ<2>(polynomial_degree), triangulation);
   mapping = std::move(cached);
+  lap("setup: mapping cache");
   dof_handler.distribute_dofs(*fe);
+  lap("setup: dofs");
   // The geometric multigrid's line smoother wants the dofs numbered by radial lines.
   if (FilmLinearSolver::choose(linear_solver, true, dof_handler.n_dofs(),
                                mesh_parameters.mesh_file.empty() &&
                                    FilmMultigrid::has_hierarchy(dof_handler)) ==
       FilmLinearSolver::Method::cg_gmg)
-    FilmMultigrid::number_by_radial_lines(dof_handler, *mapping);
+    multigrid.number_by_radial_lines(dof_handler, *mapping);
+  lap("setup: numbering by lines");
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
@@ -121,13 +128,17 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), outer_boundary_dofs,
                                   {AnnulusMesh::outer_boundary});
 
+  lap("setup: index sets, zero constraints, boundary dofs");
   // The constrained dofs are the same with any Dirichlet data: one sparsity pattern per mesh.
   DynamicSparsityPattern dsp(locally_relevant_dofs);
   DoFTools::make_sparsity_pattern(dof_handler, dsp, homogeneous_constraints, false);
   SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
                                              locally_relevant_dofs);
+  lap("setup: sparsity");
   system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+  lap("setup: matrix");
   setup_constraints();
+  lap("setup: constraints");
 
   setup_settings = std::make_unique<FilmSettings>(settings);
   setup_coarsening = coarsening;
@@ -173,13 +184,28 @@ void ReynoldsSolver::assemble_system()
       unused(dofs_per_cell, dofs_per_cell);
   Vector<double> cell_rhs(dofs_per_cell);
   std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+  // Full film: the loads' parts at p = 0 and their weights in p at the same points
+  // (AffineLoadSums), so that compute_loads() does not evaluate the film everywhere again.
+  const LoadIntegrator load_integrator(*this);
+  affine_loads.reset(load_integrator.affine_applies(), locally_relevant_dofs.n_elements(),
+                     dofs_per_cell);
+  std::vector<unsigned int> relevant_index(dofs_per_cell);
+  std::function<void(unsigned int, const LocalFilm &)> at_point;
+  if (affine_loads.valid)
+    at_point = [&](const unsigned int q, const LocalFilm &f)
+    { load_integrator.add_affine_point(affine_loads, fe_values, q, f); };
 
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      // the full-film pressure matrix and Couette + squeeze right-hand side
-      cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs);
       cell->get_dof_indices(local_dof_indices);
+      if (affine_loads.valid)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
+      // the full-film pressure matrix and Couette + squeeze right-hand side
+      cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
+      if (affine_loads.valid)
+        affine_loads.add_cell(relevant_index);
       constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
                                              system_matrix, system_rhs);
     }
@@ -386,10 +412,10 @@ double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator 
 // Reynolds (Swift-Stieber): p_j = p_cav + P u_j with the complementarity min(u_j, R_j/J_jj) = 0,
 // solved by the primal-dual active-set method (Hintermueller, Ito & Kunisch 2002).
 
-void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
-                                        const DoFHandler<2>::active_cell_iterator &cell,
-                                        const bool with_void, FullMatrix<double> &A,
-                                        FullMatrix<double> &G, Vector<double> &F) const
+void ReynoldsSolver::cell_film_matrices(
+    FEValues<2> &fe_values, const DoFHandler<2>::active_cell_iterator &cell, const bool with_void,
+    FullMatrix<double> &A, FullMatrix<double> &G, Vector<double> &F,
+    const std::function<void(unsigned int, const LocalFilm &)> &at_point) const
 {
   // A: pressure flow, F: full-film Couette + squeeze, G: void-fraction terms (see above). All
   // scaled by 12 mu / C0^3 like the full-film system.
@@ -404,6 +430,8 @@ void ReynoldsSolver::cell_film_matrices(FEValues<2> &fe_values,
   for (const unsigned int q : fe_values.quadrature_point_indices())
   {
     const LocalFilm f = local_film(fe_values.quadrature_point(q));
+    if (at_point)
+      at_point(q, f);
     const Tensor<2, 2> K = equation_scale * f.K;
     const double JxW = fe_values.JxW(q);
     for (unsigned int j = 0; j < n; ++j)
@@ -564,6 +592,14 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
 std::map<std::string, double> ReynoldsSolver::stage_times() const
 {
   return timer.get_summary_data(TimerOutput::total_wall_time);
+}
+
+std::map<std::string, double> ReynoldsSolver::detail_times() const
+{
+  std::map<std::string, double> times = setup_detail;
+  for (const auto &[name, t] : multigrid.times)
+    times["multigrid: " + name] = t;
+  return times;
 }
 
 double ReynoldsSolver::volume_flow_through_circle(const double rho,

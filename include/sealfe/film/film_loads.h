@@ -4,6 +4,7 @@
 #pragma once
 
 #include <deal.II/base/tensor.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
@@ -64,6 +65,26 @@ struct FilmPerturbation
 
 class ReynoldsSolver;
 
+/// The loads of a full film (no cavitation model, smooth faces) are affine in the nodal pressures:
+/// each sum of LoadIntegrator is its value at p = 0 plus weights . p (force and moments through p,
+/// the friction torque through dp/dtheta). Both parts are gathered during the assembly
+/// (ReynoldsSolver::assemble_system), which evaluates the film at every quadrature point
+/// anyway, so that loads() evaluates it again only in the cells on the two circles (leakages).
+struct AffineLoadSums
+{
+  static constexpr unsigned int linear_sums[6] = {0, 1, 2, 3, 4, 7};
+  static constexpr unsigned int n_linear = 6;
+  bool valid = false;
+  std::vector<double> constant; ///< every sum at p = 0
+  /// d(sum_m)/dp_j at [n_linear j + m], j over the locally relevant dofs, m over linear_sums
+  std::vector<double> weight;
+  /// The current cell's part of `weight`, [n_linear i + m] for its dof i (add_affine_point);
+  /// add_cell() adds it to `weight`.
+  std::vector<double> cell_weight;
+  void reset(bool valid, std::size_t n_relevant_dofs, unsigned int dofs_per_cell);
+  void add_cell(const std::vector<unsigned int> &relevant_index);
+};
+
 /// Loads of a ReynoldsSolver's last solution, and their derivatives along film perturbations
 /// (ReynoldsSolver::linearized_loads). One integration routine for both, so that the
 /// linearisation differentiates exactly what the loads integrate.
@@ -75,6 +96,13 @@ public:
   explicit LoadIntegrator(const ReynoldsSolver &solver);
   /// Loads of the solved state.
   FilmLoads loads() const;
+  /// Whether the solver's AffineLoadSums give the loads (full film).
+  bool affine_applies() const;
+  /// One quadrature point of the assembly (the film f there) into `sums` (the weights into
+  /// its cell_weight).
+  template <typename Film>
+  void add_affine_point(AffineLoadSums &sums, const dealii::FEValues<2> &fe_values, unsigned int q,
+                        const Film &f) const;
   /// Derivatives of every load along each perturbation: the Reynolds system linearised about the
   /// solved state, one solve each with the solver's factorisation.
   std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
@@ -94,6 +122,12 @@ private:
   std::vector<FilmLoads> integrate(const std::vector<const FilmPerturbation *> &perturbations,
                                    const std::vector<const VectorType *> &dp,
                                    const std::vector<const VectorType *> &dv) const;
+  /// loads() from the solver's AffineLoadSums, the leakages from the cells on the circles.
+  FilmLoads affine_loads() const;
+  /// Vertices on a boundary face of an owned or ghost cell.
+  std::vector<bool> boundary_vertices() const;
+  /// The sign of the Poiseuille shear in the torque resisting the rotor (add_friction_and_squeeze).
+  double friction_face() const;
   /// Nodal cavitation indicator (1 cavitated, 0 full film) of the reynolds and jfo solutions.
   VectorType cavitation_indicator() const;
   /// Force, moments, area, cavitated area and contact sums at one quadrature point.

@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <functional>
+#include <map>
 #include <memory>
 
 namespace sealfe
@@ -19,9 +20,10 @@ namespace sealfe
 /// are re-discretisations of the same operator on the coarser levels of the mesh (K evaluated at
 /// the level cells' quadrature points), Chebyshev smoothing around radial line Jacobi (each
 /// line of dofs at one angle solved exactly: the cells are long in theta) on every level, KLU
-/// on the coarsest level, prolongation by the finite-element embedding
-/// (MGTransferPrebuilt). The finest level is the system matrix itself when the level and active
-/// numberings coincide (always, so far, on a globally refined mesh; else it is assembled too).
+/// on the coarsest level, prolongation by the finite-element embedding (Epetra matrices built
+/// from the parent cells; MGTransferPrebuilt where the finest level is not the system). The
+/// finest level takes the active numbering and is the system matrix itself (always, so far, on a
+/// globally refined mesh; else it is assembled too).
 class FilmMultigrid
 {
 public:
@@ -48,8 +50,8 @@ public:
   /// Number the (active) dofs by radial lines: by angle, then radius, within each rank's set.
   /// The multigrid numbers its levels the same way, so that the finest level is the system
   /// matrix and the smoother's line blocks are contiguous.
-  static void number_by_radial_lines(dealii::DoFHandler<2> &dof_handler,
-                                     const dealii::Mapping<2> &mapping);
+  void number_by_radial_lines(dealii::DoFHandler<2> &dof_handler,
+                              const dealii::Mapping<2> &mapping);
 
   /// Whether `dof_handler`'s mesh has a level hierarchy worth a multigrid (at least 2 levels).
   static bool has_hierarchy(const dealii::DoFHandler<2> &dof_handler);
@@ -71,11 +73,17 @@ public:
 
   unsigned int n_levels() const;
 
+  /// Seconds of the parts of setup() and prepare() since the last setup().
+  std::map<std::string, double> times;
+
 private:
   struct Data;
   std::unique_ptr<Data> data;
   dealii::DoFHandler<2> *dof_handler = nullptr;
   const dealii::Mapping<2> *mapping = nullptr;
+  /// The radial lines of the active numbering (number_by_radial_lines): first position of each
+  /// line within the owned dofs; the finest level reuses them.
+  std::vector<unsigned int> active_line_start;
 };
 
 } // namespace sealfe

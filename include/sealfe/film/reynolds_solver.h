@@ -146,6 +146,8 @@ public:
   unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
   /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
   std::map<std::string, double> stage_times() const;
+  /// Parts of the setup stage and of the multigrid set-up of the current mesh (seconds).
+  std::map<std::string, double> detail_times() const;
 
   /// Optional manufactured-solution hooks (tests): Dirichlet data on both circles and an extra
   /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
@@ -190,10 +192,11 @@ private:
   void solve_cavitation();
   /// Scale of the cavitation models' pressure unknown from the full-film solution.
   double full_film_pressure_scale() const;
-  void cell_film_matrices(dealii::FEValues<2> &fe_values,
-                          const dealii::DoFHandler<2>::active_cell_iterator &cell,
-                          const bool with_void, dealii::FullMatrix<double> &A,
-                          dealii::FullMatrix<double> &G, dealii::Vector<double> &F) const;
+  void cell_film_matrices(
+      dealii::FEValues<2> &fe_values, const dealii::DoFHandler<2>::active_cell_iterator &cell,
+      const bool with_void, dealii::FullMatrix<double> &A, dealii::FullMatrix<double> &G,
+      dealii::Vector<double> &F,
+      const std::function<void(unsigned int, const LocalFilm &)> &at_point = {}) const;
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
   FilmLoads compute_loads() const;
 
@@ -253,6 +256,9 @@ private:
   double cavitation_residual = 0;
   unsigned int last_iterations = 0;
   mutable dealii::TimerOutput timer;
+  std::map<std::string, double> setup_detail;
+  /// The loads of the last assembly as affine functions of p (full film; film_loads.h).
+  AffineLoadSums affine_loads;
 };
 
 /// Error estimate of every load of a degree-k solve from the same solve on a mesh twice as coarse
