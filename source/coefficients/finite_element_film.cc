@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -27,14 +28,45 @@ std::string FiniteElementFilm::description() const
 
 FilmLoads FiniteElementFilm::loads(const FilmState &state) const
 {
-  return solver.reynolds().run(state.apply(base.geometry), state.apply(base.conditions));
+  // solved in the features' frame (rotor-borne features at their Phase, where the mesh is aligned
+  // with their steps), the stator-frame parts turned by -rotor_angle into it
+  return state.turned_back(
+      solver.reynolds().run(state.in_feature_frame(base.geometry), state.apply(base.conditions)),
+      base.geometry);
 }
+
+namespace
+{
+/// K or D of the features' frame, turned by `angle` into the stator frame: with q = T q' and
+/// F = T F' (T = diag(1, R(angle)) on (z, tilt) and on (force, moment)), -dF/dq = T K' T^T.
+FilmCoefficients::Matrix3 turned_matrix(const FilmCoefficients::Matrix3 &k, const double angle)
+{
+  const double c = std::cos(angle), s = std::sin(angle);
+  const double T[3][3] = {{1, 0, 0}, {0, c, -s}, {0, s, c}};
+  FilmCoefficients::Matrix3 tk{}, out{};
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      for (unsigned int l = 0; l < 3; ++l)
+        tk[i][j] += T[i][l] * k[l][j];
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      for (unsigned int l = 0; l < 3; ++l)
+        out[i][j] += tk[i][l] * T[j][l];
+  return out;
+}
+} // namespace
 
 FilmCoefficients FiniteElementFilm::coefficients(const FilmState &state) const
 {
   const auto start = std::chrono::steady_clock::now();
   const OperatingConditions conditions = state.apply(base.conditions);
-  FilmCoefficients k = solver.coefficients(state.apply(base.geometry), conditions);
+  FilmCoefficients k = solver.coefficients(state.in_feature_frame(base.geometry), conditions);
+  const double angle = state.feature_frame_angle(base.geometry);
+  if (angle != 0)
+  {
+    k.stiffness = turned_matrix(k.stiffness, angle);
+    k.damping = turned_matrix(k.damping, angle);
+  }
   const ReynoldsSolver &reynolds = solver.reynolds();
   std::ostringstream model;
   model << k.model << ", " << reynolds.n_dofs() << " dofs, degree " << reynolds.degree();

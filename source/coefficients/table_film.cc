@@ -30,11 +30,16 @@ std::string TableFilm::description() const
 
 FilmLoads TableFilm::loads(const FilmState &state) const
 {
-  // turn a tilt onto the table's direction (rotational invariance of an axisymmetric face)
+  // turn a tilt onto the table's direction (rotational invariance of an axisymmetric face: not
+  // with waviness, a film formula or surface features, whose loads the table holds at their
+  // own angle; a tilt in another direction is then outside the table)
+  if (geometry.features_on_rotor() && state.rotor_angle != 0)
+    throw std::runtime_error("Table film: the table holds the loads of the rotor's surface "
+                             "features at one rotor angle (Phase), not at a turned rotor");
   const auto &axes = table_->axes();
   const bool angle_swept = std::find(axes.begin(), axes.end(), "tilt_angle") != axes.end();
   const double turn =
-      (!angle_swept && geometry.wave_amplitude == 0 && (state.tilt_x != 0 || state.tilt_y != 0))
+      (!angle_swept && !geometry.has_angular_pattern() && (state.tilt_x != 0 || state.tilt_y != 0))
           ? table_->constant_point().tilt_angle - state.apply(geometry).tilt_angle
           : 0.0;
   const FilmState s = state.turned(turn);

@@ -1,8 +1,10 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
+#include <sealfe/film/surface_features.h>
 
 #include <algorithm>
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -108,6 +110,16 @@ void SealDynamicsInput::validate() const
       << "Stator speed must be 0 (got " << operating.stator_speed << " rad/s)";
     throw std::runtime_error(s.str());
   }
+  // Rotor-borne features turn relative to the stator; the linear studies hold the film's
+  // coefficients at rotor angle 0 (Phase). Exact when N >= 3 identical features sit on an
+  // axisymmetric film (K, D commute with the turn by 2 pi / N, so they do with every turn);
+  // otherwise the coefficients are periodic in time and the study is of the snapshot.
+  if (geometry.features_on_rotor() && (geometry.tilt != 0 || geometry.wave_amplitude != 0 ||
+                                       geometry.expression || geometry.features->count() < 3))
+    std::cerr << "sealfe: warning: the rotor's surface features turn over a film that is not "
+                 "axisymmetric (tilt, waviness, a film formula) or number fewer than 3: the "
+                 "coefficients depend on the rotor angle; the linear study takes those at "
+                 "Phase (doc/textures.md, Which frame)\n";
   // Level 0 checks the narrow seal, level 1 reads the table and checks that it holds this seal,
   // level 2 builds the solver (no FE solve).
   film_force_model();

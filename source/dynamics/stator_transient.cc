@@ -374,8 +374,45 @@ FilmState StatorTransient::film_state(const double t, const State &y) const
   else if (seal.thermal.time_constant > 0)
     s.coning = y[6];
   else
-    s.coning = quasi_static_coning(seal, s);
+    s.coning = quasi_static_coning(seal, film_frame(s, seal.ramps.speed.integral(t)));
   return s;
+}
+
+FilmState StatorTransient::film_frame(const FilmState &s, const double shaft_angle) const
+{
+  if (!seal.geometry.has_angular_pattern())
+    return s;
+  FilmState f = s.turned(rotating ? shaft_angle : 0.0);
+  f.rotor_angle = shaft_angle; // the stator does not spin
+  return f;
+}
+
+FilmLoads StatorTransient::film_loads(const FilmState &s, const double shaft_angle) const
+{
+  FilmLoads l = film.loads(film_frame(s, shaft_angle));
+  if (rotating && seal.geometry.has_angular_pattern())
+  {
+    const auto m = turned({{l.moment_x, l.moment_y}}, -shaft_angle);
+    const auto c = turned({{l.contact_moment_x, l.contact_moment_y}}, -shaft_angle);
+    l.moment_x = m[0];
+    l.moment_y = m[1];
+    l.contact_moment_x = c[0];
+    l.contact_moment_y = c[1];
+  }
+  return l;
+}
+
+FaceContact::Loads StatorTransient::contact_loads(const FilmState &s,
+                                                  const double shaft_angle) const
+{
+  FaceContact::Loads c = seal.contact.loads(film_frame(s, shaft_angle).apply(seal.geometry));
+  if (rotating && seal.geometry.has_angular_pattern())
+  {
+    const auto m = turned({{c.moment_x, c.moment_y}}, -shaft_angle);
+    c.moment_x = m[0];
+    c.moment_y = m[1];
+  }
+  return c;
 }
 
 StatorTransient::Evaluation StatorTransient::evaluate(const double t, const State &y) const
@@ -384,14 +421,14 @@ StatorTransient::Evaluation StatorTransient::evaluate(const double t, const Stat
   e.state = film_state(t, y);
   e.shaft_angle = seal.ramps.speed.integral(t);
   const FilmState &s = e.state;
-  e.contact = seal.contact.loads(s.apply(seal.geometry));
+  e.contact = contact_loads(s, e.shaft_angle);
   e.heating_film = seal.thermal.film == ThermalConing::Film::minimum
                        ? std::max(e.contact.min_film, 0.1 * seal.contact.composite_roughness())
                    : seal.thermal.film == ThermalConing::Film::centerline
                        ? seal.geometry.clearance + s.axial_offset
                        : e.contact.heating_film;
   ++evaluations;
-  e.film = film.loads(s);
+  e.film = film_loads(s, e.shaft_angle);
   e.closing_force = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
                                        s.inner_pressure, s.outer_pressure);
   return e;
@@ -402,7 +439,8 @@ double StatorTransient::contact_margin(const double t, const State &y) const
   const FilmState s = film_state(t, y);
   const double closing = seal.closing.value(seal.geometry.inner_radius, seal.geometry.outer_radius,
                                             s.inner_pressure, s.outer_pressure);
-  return seal.contact.loads(s.apply(seal.geometry)).force - settings.contact_threshold * closing;
+  return contact_loads(s, seal.ramps.speed.integral(t)).force -
+         settings.contact_threshold * closing;
 }
 
 std::array<double, 2> StatorTransient::rotor_tilt(const double shaft_angle) const
@@ -573,7 +611,7 @@ TransientSample StatorTransient::sample(const double t, const State &y) const
   s.rotor_tilt_y = rotor[1];
   s.relative_tilt = std::hypot(e.state.tilt_x, e.state.tilt_y);
   s.coning = e.state.coning;
-  s.min_film = e.state.apply(seal.geometry).minimum().value; // exact: on r = ri or ro
+  s.min_film = film_frame(e.state, e.shaft_angle).apply(seal.geometry).minimum().value;
   s.min_film_over_sigma = s.min_film / seal.contact.composite_roughness();
   s.heating_film = e.heating_film;
   s.film_force = e.film.force_z;

@@ -129,6 +129,12 @@ void check(const int flag, const char *what)
 
 StatorTransient::Result StatorTransient::run() const
 {
+  // rotor-borne features turn with the shaft: a film of loads made beforehand holds one angle
+  if (seal.geometry.features_on_rotor() && !film.turns_rotor_features())
+    throw std::runtime_error("Transient: surface features on the rotor turn with it, but the " +
+                             to_string(film.level()) +
+                             " film holds its loads at one rotor angle (Phase); use Transient/"
+                             "Film level = finite element");
   Result result;
   // the integrated components: Z, Z', a, a', beta, V; the rotor's tilt and rate when it is
   // flexible; its axial displacement and rate when it is axially flexible

@@ -43,6 +43,7 @@ public:
   {
     return film->coefficients(state);
   }
+  bool turns_rotor_features() const override { return film->turns_rotor_features(); }
   unsigned long evaluations() const { return count; }
 
 private:

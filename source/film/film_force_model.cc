@@ -85,6 +85,32 @@ FilmState FilmState::turned(const double angle) const
   return s;
 }
 
+double FilmState::feature_frame_angle(const FilmThickness &base) const
+{
+  return base.features_on_rotor() ? rotor_angle : 0.0;
+}
+
+FilmThickness FilmState::in_feature_frame(const FilmThickness &base) const
+{
+  return apply(base).turned_frame(feature_frame_angle(base));
+}
+
+FilmLoads FilmState::turned_back(FilmLoads loads, const FilmThickness &base) const
+{
+  // force, leakages, friction, extrema, moment_restoring/transverse (taken about the tilt's
+  // direction, which turned with the frame) do not depend on the frame
+  const double angle = feature_frame_angle(base);
+  if (angle == 0)
+    return loads;
+  const auto m = sealfe::turned({{loads.moment_x, loads.moment_y}}, angle);
+  const auto c = sealfe::turned({{loads.contact_moment_x, loads.contact_moment_y}}, angle);
+  loads.moment_x = m[0];
+  loads.moment_y = m[1];
+  loads.contact_moment_x = c[0];
+  loads.contact_moment_y = c[1];
+  return loads;
+}
+
 std::array<double, 2> turned(const std::array<double, 2> &v, const double angle)
 {
   const double c = std::cos(angle), s = std::sin(angle);

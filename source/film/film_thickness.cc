@@ -103,7 +103,7 @@ double FilmThickness::added_value(const double r, const double theta) const
 {
   double h = 0;
   if (expression)
-    h += expression->value(r, theta, time);
+    h += expression->value(r, theta + frame_angle, time);
   if (features)
     h += features->depth(r, theta);
   return h;
@@ -111,17 +111,17 @@ double FilmThickness::added_value(const double r, const double theta) const
 
 double FilmThickness::expression_d_dr(const double r, const double theta) const
 {
-  return expression->d_dr(r, theta, time);
+  return expression->d_dr(r, theta + frame_angle, time);
 }
 
 double FilmThickness::expression_d_dtheta(const double r, const double theta) const
 {
-  return expression->d_dtheta(r, theta, time);
+  return expression->d_dtheta(r, theta + frame_angle, time);
 }
 
 double FilmThickness::expression_d_dt(const double r, const double theta) const
 {
-  return expression->d_dt(r, theta, time);
+  return expression->d_dt(r, theta + frame_angle, time);
 }
 
 double FilmThickness::feature_frame_speed(const double rotor_speed, const double stator_speed) const
@@ -129,6 +129,27 @@ double FilmThickness::feature_frame_speed(const double rotor_speed, const double
   if (!features)
     return 0;
   return features->face == SurfaceFeatures::Face::rotor ? rotor_speed : stator_speed;
+}
+
+bool FilmThickness::features_on_rotor() const
+{
+  return features && features->face == SurfaceFeatures::Face::rotor;
+}
+
+FilmThickness FilmThickness::turned_frame(const double angle) const
+{
+  FilmThickness h = *this;
+  if (angle == 0)
+    return h;
+  // a vector v of the old frame has the components R(-angle) v in the new one; the tilt's
+  // thickest direction psi becomes psi - angle, as a wave crest theta_w becomes theta_w - angle
+  const double c = std::cos(angle), s = std::sin(angle);
+  h.tilt_angle = tilt_angle - angle;
+  h.tilt_rate_x = c * tilt_rate_x + s * tilt_rate_y;
+  h.tilt_rate_y = -s * tilt_rate_x + c * tilt_rate_y;
+  h.wave_phase = wave_phase - angle;
+  h.frame_angle = frame_angle + angle;
+  return h;
 }
 
 void FilmThickness::set_tilt_vector(const double tx, const double ty)
@@ -154,7 +175,8 @@ FilmThickness::Extremum extremum(const FilmThickness &h, const bool maximum)
     // Surface features (recesses) are left out: they never bring the faces closer.
     const auto film = [&](const double r, const double theta)
     {
-      const double v = h.analytic_value(r, theta) + h.expression->value(r, theta, h.time);
+      const double v =
+          h.analytic_value(r, theta) + h.expression->value(r, theta + h.frame_angle, h.time);
       return maximum ? -v : v;
     };
     const unsigned int nr = 32, nt = 2048;

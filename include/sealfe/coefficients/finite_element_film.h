@@ -27,7 +27,10 @@ public:
   std::string description() const override;
   /// One finite-element solve at `state` (FilmState::apply on the settings' geometry and
   /// conditions), on the unrefined mesh of the settings.
+  /// Rotor-borne surface features stand at Phase + state.rotor_angle: the film is solved in
+  /// their frame (FilmState::in_feature_frame) and the moments turned back.
   FilmLoads loads(const FilmState &state) const override;
+  bool turns_rotor_features() const override { return true; }
   /// K, D of CoefficientSolver (its method, by default the linearised Reynolds system) at
   /// `state`, without the error estimate. The model string names the dofs and degree; each
   /// evaluation logs one line on stderr (rank 0 of the communicator), since a level-2 sweep may

@@ -218,6 +218,16 @@ private:
   struct Evaluation;
   Evaluation evaluate(double t, const TransientState &y) const;
   TransientState rate(double t, const TransientState &y) const;
+  /// The state `s` (integration frame) as the film and contact models take it. A film with an
+  /// angular pattern (waviness, a film formula, surface features) is written in the stator
+  /// frame, with rotor-borne features turned by the shaft angle: `s` turned into the stator
+  /// frame, rotor_angle = shaft_angle. An axisymmetric film gets `s` itself (its loads turn with
+  /// its state, and the turning frame keeps a steady whirl steady, doc/transient.md).
+  FilmState film_frame(const FilmState &s, double shaft_angle) const;
+  /// The film's and the contact's loads at `s` (integration frame), moments in the integration
+  /// frame.
+  FilmLoads film_loads(const FilmState &s, double shaft_angle) const;
+  FaceContact::Loads contact_loads(const FilmState &s, double shaft_angle) const;
   /// The rotor's tilt vector in the integration frame at the shaft angle psi.
   std::array<double, 2> rotor_tilt(double shaft_angle) const;
 

@@ -47,7 +47,11 @@ struct FilmState
   double stator_speed = 0;   ///< rad/s
   double inner_pressure = 0; ///< Pa
   double outer_pressure = 0; ///< Pa
-  double time = 0;           ///< s (time-dependent films, e.g. features turning with a ring)
+  double time = 0;           ///< s, the t of a film expression
+  /// rad: how far the rotor has turned relative to the stator since t = 0, Int (w1 - w2) dt. Moves
+  /// rotor-borne surface features to Phase + rotor_angle in the stator frame (the frame of the
+  /// state's vectors and of the film's waviness and expression); nothing else depends on it.
+  double rotor_angle = 0;
 
   /// The state of a film and an operating point (time 0).
   static FilmState from(const FilmThickness &film, const OperatingConditions &conditions);
@@ -57,6 +61,17 @@ struct FilmState
   OperatingConditions apply(OperatingConditions base) const;
   /// The state of the face pair turned about the axis by `angle` (tilt and tilt rate turned).
   FilmState turned(double angle) const;
+  /// The angle (rad) of the frame in which a film model solves `base` at this state, the frame
+  /// of its surface features, from the stator frame: rotor_angle when the features sit on the
+  /// rotor, else 0.
+  double feature_frame_angle(const FilmThickness &base) const;
+  /// `base` with this state applied (apply), written in the features' frame
+  /// (FilmThickness::turned_frame by feature_frame_angle): the film a model solves; its moments
+  /// are turned back by turned_back.
+  FilmThickness in_feature_frame(const FilmThickness &base) const;
+  /// Loads computed in the features' frame (in_feature_frame) with their moments turned back
+  /// into the stator frame.
+  FilmLoads turned_back(FilmLoads loads, const FilmThickness &base) const;
 };
 
 /// The tilt, tilt-rate or moment vector (x, y) turned about the axis by `angle` (rad,
@@ -83,6 +98,10 @@ public:
   /// at `state` (film_loads.h for signs and units). Throws std::runtime_error with a one-line
   /// reason when the state is outside what the model can evaluate.
   virtual FilmLoads loads(const FilmState &state) const = 0;
+  /// Whether loads() places rotor-borne surface features at FilmState::rotor_angle (the models
+  /// that solve the film at each state). A model that holds loads computed beforehand (a table)
+  /// holds them at one rotor angle only.
+  virtual bool turns_rotor_features() const { return false; }
   /// Whether coefficients() is available.
   virtual bool provides_coefficients() const { return true; }
   /// Stiffness and damping of the film about `state` (film_coefficients.h).

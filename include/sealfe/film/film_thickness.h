@@ -83,6 +83,21 @@ public:
   /// solved in that ring's frame, where the features stand still (0 without features: the frame
   /// of the solve is the non-rotating one, as without features).
   double feature_frame_speed(const double rotor_speed, const double stator_speed) const;
+  /// Whether the surface features sit on the rotor face (they turn with it relative to the
+  /// stator, FilmState::rotor_angle).
+  bool features_on_rotor() const;
+  /// Whether anything fixed in the stator frame breaks the film's rotational symmetry (waviness,
+  /// a film expression, surface features): then the loads of a turned state are not the turned
+  /// loads, and a frame that turns must be accounted for.
+  bool has_angular_pattern() const { return wave_amplitude != 0 || expression || features; }
+
+  /// The same film written in a frame turned by `angle` (rad, +theta) about the axis: the parts
+  /// fixed in the old frame (tilt, tilt rate, waviness, film expression) are turned by -angle,
+  /// the surface features stay where they are (they are fixed in the new frame: it is the
+  /// rotor's when rotor-borne features have turned by `angle`). A point at theta in the new frame
+  /// is at theta + angle in the old one, so h_new(r, theta) = h_old(r, theta + angle) for all but
+  /// the features, exactly (the expression is evaluated at theta + frame_angle).
+  FilmThickness turned_frame(double angle) const;
 
   /// Minimum of h over the dam, and where it occurs (found on a fine polar grid + analytic
   /// radial extremes: h is linear in r for fixed theta).
@@ -112,6 +127,9 @@ public:
   double tilt_rate_x = 0;       // rad/s
   double tilt_rate_y = 0;       // rad/s
   double time = 0;              // s, the t of the film expression
+  /// rad: angle of the frame of this film from the frame the film expression is written in (the
+  /// stator's); the expression is evaluated at theta + frame_angle (turned_frame).
+  double frame_angle = 0;
 
   /// Geometry/Film expression (null: none) and Geometry/Surface features (null: none). Shared
   /// (immutable) between copies of the film: the perturbed and transient films copy it often.
