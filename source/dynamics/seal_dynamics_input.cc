@@ -1,6 +1,8 @@
 #include <sealfe/dynamics/seal_dynamics_input.h>
 #include <sealfe/film/surface_features.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 
 #include <cmath>
@@ -116,10 +118,16 @@ void SealDynamicsInput::validate() const
   // otherwise the coefficients are periodic in time and the study is of the snapshot.
   if (geometry.features_on_rotor() && (geometry.tilt != 0 || geometry.wave_amplitude != 0 ||
                                        geometry.expression || geometry.features->count() < 3))
-    std::cerr << "sealfe: warning: the rotor's surface features turn over a film that is not "
-                 "axisymmetric (tilt, waviness, a film formula) or number fewer than 3: the "
-                 "coefficients depend on the rotor angle; the linear study takes those at "
-                 "Phase (doc/textures.md, Which frame)\n";
+  {
+    // once per process and on rank 0 only: validate() runs once per swept value and per rank
+    static bool warned = false;
+    if (!warned && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::cerr << "sealfe: warning: the rotor's surface features turn over a film that is not "
+                   "axisymmetric (tilt, waviness, a film formula) or number fewer than 3: the "
+                   "coefficients depend on the rotor angle; the linear study takes those at "
+                   "Phase (doc/textures.md, Which frame)\n";
+    warned = true;
+  }
   // Level 0 checks the narrow seal, level 1 reads the table and checks that it holds this seal,
   // level 2 builds the solver (no FE solve).
   film_force_model();

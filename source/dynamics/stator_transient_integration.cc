@@ -8,6 +8,7 @@
 // of steps), and the ARKode wrapper re-ran the Jacobian set-up before every linear solve
 // (150 film evaluations per step on this problem).
 #include <sealfe/dynamics/stator_transient.h>
+#include <sealfe/film/film_expression.h>
 #include <sealfe/io/interrupt.h>
 
 #include <ida/ida.h>
@@ -135,6 +136,13 @@ StatorTransient::Result StatorTransient::run() const
                              to_string(film.level()) +
                              " film holds its loads at one rotor angle (Phase); use Transient/"
                              "Film level = finite element");
+  // a formula in t changes the film by itself; tables and closed forms hold it at t = 0
+  if (seal.geometry.expression && seal.geometry.expression->depends_on_time() &&
+      !film.turns_rotor_features())
+    throw std::runtime_error("Transient: the Film expression depends on t, but the " +
+                             to_string(film.level()) +
+                             " film holds its loads at t = 0; use Transient/Film level = "
+                             "finite element");
   Result result;
   // the integrated components: Z, Z', a, a', beta, V; the rotor's tilt and rate when it is
   // flexible; its axial displacement and rate when it is axially flexible

@@ -151,7 +151,9 @@ bool AnnulusMesh::sequences_jfo(const unsigned int coarsening, const double ri,
 {
   if (coarsening <= global_refinements)
     return true;
-  if (!mesh_file.empty())
+  // a mesh file or a generated gmsh mesh (mesh_size > 0, the file name may not be set yet when
+  // used as a library): its coarser levels would be regenerated, which buys the start nothing
+  if (mesh_size > 0 || !mesh_file.empty())
     return false;
   if (!(alignment.circle_radius > 0))
     return true;

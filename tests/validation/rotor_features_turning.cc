@@ -392,4 +392,33 @@ TEST(RotorFeatures, FilmOfOneRotorAngleIsRefusedInTransients)
   EXPECT_NE(message.find("Film level = finite element"), std::string::npos);
   EXPECT_EQ(message.find('\n'), std::string::npos);
 }
+
+// A film formula in t changes the film by itself; a film of loads made beforehand holds it at
+// t = 0, so such a transient is refused in one line (a formula without t is not).
+TEST(RotorFeatures, FormulaInTimeIsRefusedByAFilmMadeBeforehand)
+{
+  const auto run_with = [](const std::string &formula)
+  {
+    FlexibleStatorSeal seal;
+    seal.geometry.expression = std::make_shared<const FilmExpression>(formula, "", 0.04);
+    const FixedFilm film;
+    TransientSettings settings;
+    settings.end_time = 1e-4;
+    const StatorTransient transient(seal, film, settings);
+    try
+    {
+      transient.run();
+    }
+    catch (const std::runtime_error &e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string in_time = run_with("1e-7 * sin(1000 * t)");
+  std::cout << in_time << "\n";
+  EXPECT_NE(in_time.find("depends on t"), std::string::npos);
+  EXPECT_EQ(in_time.find('\n'), std::string::npos);
+  EXPECT_EQ(run_with("1e-7 * cos(theta)").find("depends on t"), std::string::npos);
+}
 } // namespace

@@ -24,6 +24,8 @@ public:
   double d_dt(const double r, const double theta, const double t) const;
 
   const std::string &formula() const { return text; }
+  /// Whether the formula names t (a film that changes in time by itself).
+  bool depends_on_time() const { return time_dependent; }
 
 private:
   std::string text;
