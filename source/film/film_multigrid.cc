@@ -536,14 +536,14 @@ void FilmMultigrid::clear()
   dof_handler = nullptr;
   mapping = nullptr;
   active_line_start.clear();
+  lap_times.clear();
 }
 
 void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mapping_in,
                           const std::vector<types::boundary_id> &dirichlet_ids)
 {
   data.reset(); // not clear(): the active lines of number_by_radial_lines are kept
-  times.clear();
-  LapTimer lap(times);
+  LapTimer lap(lap_times);
   dof_handler = &dof_handler_in;
   mapping = &mapping_in;
   data = std::make_unique<Data>();
@@ -672,7 +672,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
 void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
                             const unsigned int n_gauss, const Parameters &parameters)
 {
-  LapTimer lap(times);
+  LapTimer lap(lap_times);
   const auto &tria = dof_handler->get_triangulation();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
   const auto &fe = dof_handler->get_fe();
