@@ -560,9 +560,15 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   // loop instead of a second search by support points, and the system matrix is then that
   // level's operator. Where a level dof would get a number this rank does not own, the finest
   // level is numbered by its own lines like the others.
+  // The test is reduced over the ranks before the branch: every rank must take it, since it
+  // holds collectives (the reduction below, renumber_dofs).
   bool fine_from_active =
-      !active_line_start.empty() &&
-      active_line_start.back() == dof_handler->locally_owned_dofs().n_elements();
+      Utilities::MPI::min(!active_line_start.empty() &&
+                                  active_line_start.back() ==
+                                      dof_handler->locally_owned_dofs().n_elements()
+                              ? 1
+                              : 0,
+                          comm) == 1;
   if (fine_from_active)
   {
     const IndexSet &owned_level = dof_handler->locally_owned_mg_dofs(fine),
