@@ -122,14 +122,18 @@ LoadIntegrator::VectorType LoadIntegrator::cavitation_indicator() const
 // contact area, 15 undershoot force int min(p - p_cav, 0) dA.
 constexpr unsigned int n_sums = 16;
 
-void AffineLoadSums::reset(const bool valid_in, const std::size_t n_relevant_dofs,
+void AffineLoadSums::reset(const bool gather, const std::size_t n_relevant_dofs,
                            const unsigned int dofs_per_cell)
 {
-  valid = valid_in;
-  constant.clear();
-  weight.clear();
-  if (!valid)
+  valid = false; // until the assembly loop has finished (ReynoldsSolver::assemble_system)
+  if (!gather)
+  {
+    // release the memory (the weights are 6 doubles a dof)
+    std::vector<double>().swap(constant);
+    std::vector<double>().swap(weight);
+    std::vector<double>().swap(cell_weight);
     return;
+  }
   constant.assign(n_sums, 0.0);
   weight.assign(n_linear * n_relevant_dofs, 0.0);
   cell_weight.assign(n_linear * dofs_per_cell, 0.0);
@@ -149,12 +153,16 @@ template <typename Film>
 void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const FEValues<2> &fe_values,
                                       const unsigned int q, const Film &f) const
 {
-  // The sums at p = 0 by the same point functions as integrate()
+  // The sums at p = p_ref (uniform: zero gradient) by the same point functions as integrate(),
+  // so that the pressure parts of the force and moments vanish here and affine_loads() dots the
+  // weights with p - p_ref: no cancellation of sum w_j p_j against p_ref A when p_ref is near
+  // the boundary pressures (exact: the shape functions sum to one, their gradients to zero).
   PointState x;
   x.x = fe_values.quadrature_point(q);
   x.f = f;
   x.JxW = fe_values.JxW(q);
-  x.p = x.v = x.indicator = x.tau = 0;
+  x.p = p_ref;
+  x.v = x.indicator = x.tau = 0;
   const PointPerturbation none;
   add_pressure_loads(x, none, sums.constant);
   add_friction_and_squeeze(x, none, sums.constant);
@@ -218,7 +226,7 @@ FilmLoads LoadIntegrator::affine_loads() const
   double linear[AffineLoadSums::n_linear] = {};
   for (std::size_t k = 0; k < p.size(); ++k)
     for (unsigned int m = 0; m < AffineLoadSums::n_linear; ++m)
-      linear[m] += a.weight[AffineLoadSums::n_linear * k + m] * p[k];
+      linear[m] += a.weight[AffineLoadSums::n_linear * k + m] * (p[k] - p_ref);
   for (unsigned int m = 0; m < AffineLoadSums::n_linear; ++m)
     sums[AffineLoadSums::linear_sums[m]] += linear[m];
 
