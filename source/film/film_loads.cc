@@ -87,16 +87,21 @@ LoadIntegrator::LoadIntegrator(const ReynoldsSolver &solver)
 
 FilmLoads LoadIntegrator::loads() const
 {
-  if (affine_applies() && solver.affine_loads.valid)
+  if (uses_assembled_sums())
     return affine_loads();
   return integrate({nullptr}, {}, {})[0];
+}
+
+bool LoadIntegrator::uses_assembled_sums() const
+{
+  return affine_applies() && solver.affine_loads.valid;
 }
 
 bool LoadIntegrator::affine_applies() const
 {
   // half-Sommerfeld clips p in the loads; reynolds and jfo are nonlinear. Rough faces keep the
-  // point-by-point integration, so that the count of flow-factor evaluations held at their
-  // validity limit (summary.json) stays that of the loads' own pass.
+  // point-by-point integration, so that the run's count of flow-factor evaluations held at their
+  // validity limit (summary.json; reset at each run) includes the loads' pass as before.
   return solver.cavitation.model == Cavitation::none && solver.flow_factors.is_smooth();
 }
 
@@ -347,10 +352,7 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   const ReynoldsSolver::LocalFilm &f = x.f;
   const double r = f.r, h = f.h, JxW = x.JxW;
   const double liquid = 1 - x.v;
-  // Surface features on the rotor: its face has step walls whose pressure the shear integral
-  // misses. By the torque balance of the film the torque resisting the rotor is the one that
-  // drags the smooth stator face, whose Poiseuille shear has the opposite sign.
-  const double face = friction_face();
+  const double face = friction_face(); // the face the shear is integrated on (see there)
   const double dp_dtheta = face * (-x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1]);
   const double liquid_clamped = std::clamp(liquid, 0.0, 1.0);
   const double u1 = solver.conditions.rotor_speed * r, u2 = solver.conditions.stator_speed * r;

@@ -606,6 +606,11 @@ std::map<std::string, double> ReynoldsSolver::stage_times() const
   return timer.get_summary_data(TimerOutput::total_wall_time);
 }
 
+bool ReynoldsSolver::loads_from_assembled_sums() const
+{
+  return LoadIntegrator(*this).uses_assembled_sums();
+}
+
 std::map<std::string, double> ReynoldsSolver::detail_times() const
 {
   std::map<std::string, double> times = setup_detail;

@@ -100,6 +100,8 @@ public:
   FilmLoads loads() const;
   /// Whether the solver's AffineLoadSums give the loads (full film).
   bool affine_applies() const;
+  /// Whether loads() takes them (they apply and the last assembly gathered them).
+  bool uses_assembled_sums() const;
   /// One quadrature point of the assembly (the film f there) into `sums` (the weights into
   /// its cell_weight).
   template <typename Film>
