@@ -87,16 +87,21 @@ LoadIntegrator::LoadIntegrator(const ReynoldsSolver &solver)
 
 FilmLoads LoadIntegrator::loads() const
 {
-  if (affine_applies() && solver.affine_loads.valid)
+  if (uses_assembled_sums())
     return affine_loads();
   return integrate({nullptr}, {}, {})[0];
+}
+
+bool LoadIntegrator::uses_assembled_sums() const
+{
+  return affine_applies() && solver.affine_loads.valid;
 }
 
 bool LoadIntegrator::affine_applies() const
 {
   // half-Sommerfeld clips p in the loads; reynolds and jfo are nonlinear. Rough faces keep the
-  // point-by-point integration, so that the count of flow-factor evaluations held at their
-  // validity limit (summary.json) stays that of the loads' own pass.
+  // point-by-point integration, so that the run's count of flow-factor evaluations held at their
+  // validity limit (summary.json; reset at each run) includes the loads' pass as before.
   return solver.cavitation.model == Cavitation::none && solver.flow_factors.is_smooth();
 }
 
@@ -122,14 +127,18 @@ LoadIntegrator::VectorType LoadIntegrator::cavitation_indicator() const
 // contact area, 15 undershoot force int min(p - p_cav, 0) dA.
 constexpr unsigned int n_sums = 16;
 
-void AffineLoadSums::reset(const bool valid_in, const std::size_t n_relevant_dofs,
+void AffineLoadSums::reset(const bool gather, const std::size_t n_relevant_dofs,
                            const unsigned int dofs_per_cell)
 {
-  valid = valid_in;
-  constant.clear();
-  weight.clear();
-  if (!valid)
+  valid = false; // until the assembly loop has finished (ReynoldsSolver::assemble_system)
+  if (!gather)
+  {
+    // release the memory (the weights are 6 doubles a dof)
+    std::vector<double>().swap(constant);
+    std::vector<double>().swap(weight);
+    std::vector<double>().swap(cell_weight);
     return;
+  }
   constant.assign(n_sums, 0.0);
   weight.assign(n_linear * n_relevant_dofs, 0.0);
   cell_weight.assign(n_linear * dofs_per_cell, 0.0);
@@ -149,12 +158,16 @@ template <typename Film>
 void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const FEValues<2> &fe_values,
                                       const unsigned int q, const Film &f) const
 {
-  // The sums at p = 0 by the same point functions as integrate()
+  // The sums at p = p_ref (uniform: zero gradient) by the same point functions as integrate(),
+  // so that the pressure parts of the force and moments vanish here and affine_loads() dots the
+  // weights with p - p_ref: no cancellation of sum w_j p_j against p_ref A when p_ref is near
+  // the boundary pressures (exact: the shape functions sum to one, their gradients to zero).
   PointState x;
   x.x = fe_values.quadrature_point(q);
   x.f = f;
   x.JxW = fe_values.JxW(q);
-  x.p = x.v = x.indicator = x.tau = 0;
+  x.p = p_ref;
+  x.v = x.indicator = x.tau = 0;
   const PointPerturbation none;
   add_pressure_loads(x, none, sums.constant);
   add_friction_and_squeeze(x, none, sums.constant);
@@ -218,7 +231,7 @@ FilmLoads LoadIntegrator::affine_loads() const
   double linear[AffineLoadSums::n_linear] = {};
   for (std::size_t k = 0; k < p.size(); ++k)
     for (unsigned int m = 0; m < AffineLoadSums::n_linear; ++m)
-      linear[m] += a.weight[AffineLoadSums::n_linear * k + m] * p[k];
+      linear[m] += a.weight[AffineLoadSums::n_linear * k + m] * (p[k] - p_ref);
   for (unsigned int m = 0; m < AffineLoadSums::n_linear; ++m)
     sums[AffineLoadSums::linear_sums[m]] += linear[m];
 
@@ -339,10 +352,7 @@ void LoadIntegrator::add_friction_and_squeeze(const PointState &x, const PointPe
   const ReynoldsSolver::LocalFilm &f = x.f;
   const double r = f.r, h = f.h, JxW = x.JxW;
   const double liquid = 1 - x.v;
-  // Surface features on the rotor: its face has step walls whose pressure the shear integral
-  // misses. By the torque balance of the film the torque resisting the rotor is the one that
-  // drags the smooth stator face, whose Poiseuille shear has the opposite sign.
-  const double face = friction_face();
+  const double face = friction_face(); // the face the shear is integrated on (see there)
   const double dp_dtheta = face * (-x.x[1] * x.grad_p[0] + x.x[0] * x.grad_p[1]);
   const double liquid_clamped = std::clamp(liquid, 0.0, 1.0);
   const double u1 = solver.conditions.rotor_speed * r, u2 = solver.conditions.stator_speed * r;

@@ -9,6 +9,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/exceptions.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <vector>
@@ -337,6 +339,11 @@ public:
     prolongation.clear();
     prolongation.resize(n_levels);
     maps.clear();
+    // The Epetra matrices take int global indices (the int() casts below): every level must
+    // number its dofs below 2^31 (as the Trilinos wrappers of deal.II's 32-bit indices do).
+    for (unsigned int l = 0; l < n_levels; ++l)
+      AssertThrow(dof_handler.n_dofs(l) <= types::global_dof_index(std::numeric_limits<int>::max()),
+                  ExcMessage("FilmMultigrid: level dofs beyond 32-bit Epetra indices"));
     for (unsigned int l = 0; l < n_levels; ++l)
       maps.push_back(std::make_unique<Epetra_Map>(
           dof_handler.locally_owned_mg_dofs(l).make_trilinos_map(comm, true)));
@@ -414,18 +421,26 @@ public:
             std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], *maps[l - 1], count.data(), true);
         for (std::size_t r = 0; r < n_rows; ++r)
           if (count[r] > 0)
-            matrix->InsertMyValues(int(r), count[r], &sorted_values[start[r]],
-                                   &sorted_columns[start[r]]);
+          {
+            const int ierr = matrix->InsertMyValues(int(r), count[r], &sorted_values[start[r]],
+                                                    &sorted_columns[start[r]]);
+            AssertThrow(ierr == 0, ExcTrilinosError(ierr));
+          }
       }
       else
       {
         matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *maps[l], count.data(), true);
         for (std::size_t r = 0; r < n_rows; ++r)
           if (count[r] > 0)
-            matrix->InsertGlobalValues(int(owned.nth_index_in_set(r)), count[r],
-                                       &sorted_values[start[r]], &sorted_columns[start[r]]);
+          {
+            const int ierr =
+                matrix->InsertGlobalValues(int(owned.nth_index_in_set(r)), count[r],
+                                           &sorted_values[start[r]], &sorted_columns[start[r]]);
+            AssertThrow(ierr == 0, ExcTrilinosError(ierr));
+          }
       }
-      matrix->FillComplete(*maps[l - 1], *maps[l]);
+      const int ierr = matrix->FillComplete(*maps[l - 1], *maps[l]);
+      AssertThrow(ierr == 0, ExcTrilinosError(ierr));
       prolongation[l] = std::move(matrix);
     }
     return Utilities::MPI::min(complete ? 1 : 0, comm) == 1;
@@ -435,7 +450,8 @@ public:
   void prolongate_and_add(const unsigned int l, VectorType &dst, const VectorType &src)
   {
     VectorType &t = work(l, dst);
-    prolongation[l]->Multiply(false, src.trilinos_vector(), t.trilinos_vector());
+    const int ierr = prolongation[l]->Multiply(false, src.trilinos_vector(), t.trilinos_vector());
+    AssertThrow(ierr == 0, ExcTrilinosError(ierr));
     dst += t;
   }
 
@@ -443,7 +459,8 @@ public:
   void restrict_and_add(const unsigned int l, VectorType &dst, const VectorType &src)
   {
     VectorType &t = work(l - 1, dst);
-    prolongation[l]->Multiply(true, src.trilinos_vector(), t.trilinos_vector());
+    const int ierr = prolongation[l]->Multiply(true, src.trilinos_vector(), t.trilinos_vector());
+    AssertThrow(ierr == 0, ExcTrilinosError(ierr));
     dst += t;
   }
 
@@ -536,14 +553,14 @@ void FilmMultigrid::clear()
   dof_handler = nullptr;
   mapping = nullptr;
   active_line_start.clear();
+  lap_times.clear();
 }
 
 void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mapping_in,
                           const std::vector<types::boundary_id> &dirichlet_ids)
 {
   data.reset(); // not clear(): the active lines of number_by_radial_lines are kept
-  times.clear();
-  LapTimer lap(times);
+  LapTimer lap(lap_times);
   dof_handler = &dof_handler_in;
   mapping = &mapping_in;
   data = std::make_unique<Data>();
@@ -560,9 +577,15 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   // loop instead of a second search by support points, and the system matrix is then that
   // level's operator. Where a level dof would get a number this rank does not own, the finest
   // level is numbered by its own lines like the others.
+  // The test is reduced over the ranks before the branch: every rank must take it, since it
+  // holds collectives (the reduction below, renumber_dofs).
   bool fine_from_active =
-      !active_line_start.empty() &&
-      active_line_start.back() == dof_handler->locally_owned_dofs().n_elements();
+      Utilities::MPI::min(!active_line_start.empty() &&
+                                  active_line_start.back() ==
+                                      dof_handler->locally_owned_dofs().n_elements()
+                              ? 1
+                              : 0,
+                          comm) == 1;
   if (fine_from_active)
   {
     const IndexSet &owned_level = dof_handler->locally_owned_mg_dofs(fine),
@@ -672,7 +695,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
 void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
                             const unsigned int n_gauss, const Parameters &parameters)
 {
-  LapTimer lap(times);
+  LapTimer lap(lap_times);
   const auto &tria = dof_handler->get_triangulation();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
   const auto &fe = dof_handler->get_fe();

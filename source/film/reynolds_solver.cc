@@ -71,7 +71,6 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
     system_rhs = 0;
     return;
   }
-  setup_detail.clear();
   LapTimer lap(setup_detail);
   dof_handler.clear();
   triangulation.clear();
@@ -187,28 +186,38 @@ void ReynoldsSolver::assemble_system()
   // Full film: the loads' parts at p = 0 and their weights in p at the same points
   // (AffineLoadSums), so that compute_loads() does not evaluate the film everywhere again.
   const LoadIntegrator load_integrator(*this);
-  affine_loads.reset(load_integrator.affine_applies(), locally_relevant_dofs.n_elements(),
-                     dofs_per_cell);
+  const bool gather = load_integrator.affine_applies();
+  affine_loads.reset(gather, locally_relevant_dofs.n_elements(), dofs_per_cell);
   std::vector<unsigned int> relevant_index(dofs_per_cell);
   std::function<void(unsigned int, const LocalFilm &)> at_point;
-  if (affine_loads.valid)
+  if (gather)
     at_point = [&](const unsigned int q, const LocalFilm &f)
     { load_integrator.add_affine_point(affine_loads, fe_values, q, f); };
 
-  for (const auto &cell : dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
-    {
-      cell->get_dof_indices(local_dof_indices);
-      if (affine_loads.valid)
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
-      // the full-film pressure matrix and Couette + squeeze right-hand side
-      cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
-      if (affine_loads.valid)
-        affine_loads.add_cell(relevant_index);
-      constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
-                                             system_matrix, system_rhs);
-    }
+  try
+  {
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        cell->get_dof_indices(local_dof_indices);
+        if (gather)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
+        // the full-film pressure matrix and Couette + squeeze right-hand side
+        cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
+        if (gather)
+          affine_loads.add_cell(relevant_index);
+        constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
+                                               system_matrix, system_rhs);
+      }
+  }
+  catch (...)
+  {
+    affine_loads.reset(false, 0, 0); // partial sums: neither valid nor kept
+    throw;
+  }
+  // only now complete (a throw from local_film above leaves them invalid)
+  affine_loads.valid = gather;
   system_matrix.compress(VectorOperation::add);
   system_rhs.compress(VectorOperation::add);
 }
@@ -563,6 +572,9 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   flow_factors.reset_clamp_record();
   equation_scale = 12 * conditions.viscosity / Utilities::fixed_power<3>(film.clearance);
   timer.reset();
+  // the finer breakdown is of this run too (a same-mesh run skips the mesh set-up: no entries)
+  setup_detail.clear();
+  multigrid.reset_times();
   linear_system_solver.reset_statistics();
   current_coarsening = coarsening;
   coarse_iterations = 0;
@@ -594,10 +606,15 @@ std::map<std::string, double> ReynoldsSolver::stage_times() const
   return timer.get_summary_data(TimerOutput::total_wall_time);
 }
 
+bool ReynoldsSolver::loads_from_assembled_sums() const
+{
+  return LoadIntegrator(*this).uses_assembled_sums();
+}
+
 std::map<std::string, double> ReynoldsSolver::detail_times() const
 {
   std::map<std::string, double> times = setup_detail;
-  for (const auto &[name, t] : multigrid.times)
+  for (const auto &[name, t] : multigrid.times())
     times["multigrid: " + name] = t;
   return times;
 }

@@ -81,7 +81,9 @@ struct AffineLoadSums
   /// The current cell's part of `weight`, [n_linear i + m] for its dof i (add_affine_point);
   /// add_cell() adds it to `weight`.
   std::vector<double> cell_weight;
-  void reset(bool valid, std::size_t n_relevant_dofs, unsigned int dofs_per_cell);
+  /// Zeroed sums to gather (gather) or none (memory released); not valid either way until the
+  /// assembly sets `valid` after its loop.
+  void reset(bool gather, std::size_t n_relevant_dofs, unsigned int dofs_per_cell);
   void add_cell(const std::vector<unsigned int> &relevant_index);
 };
 
@@ -98,6 +100,8 @@ public:
   FilmLoads loads() const;
   /// Whether the solver's AffineLoadSums give the loads (full film).
   bool affine_applies() const;
+  /// Whether loads() takes them (they apply and the last assembly gathered them).
+  bool uses_assembled_sums() const;
   /// One quadrature point of the assembly (the film f there) into `sums` (the weights into
   /// its cell_weight).
   template <typename Film>

@@ -73,10 +73,13 @@ public:
 
   unsigned int n_levels() const;
 
-  /// Seconds of the parts of setup() and prepare() since the last setup().
-  std::map<std::string, double> times;
+  /// Seconds of the parts of setup() and prepare() since the last reset_times() (the owner
+  /// resets them per run, so that a solver reused on one mesh reports that run's prepares only).
+  const std::map<std::string, double> &times() const { return lap_times; }
+  void reset_times() { lap_times.clear(); }
 
 private:
+  std::map<std::string, double> lap_times;
   struct Data;
   std::unique_ptr<Data> data;
   dealii::DoFHandler<2> *dof_handler = nullptr;

@@ -146,8 +146,12 @@ public:
   unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
   /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
   std::map<std::string, double> stage_times() const;
-  /// Parts of the setup stage and of the multigrid set-up of the current mesh (seconds).
+  /// Parts of the setup stage and of the multigrid set-up and level preparation of the last run
+  /// (seconds; a run on the mesh of the previous one has no mesh set-up parts).
   std::map<std::string, double> detail_times() const;
+  /// Whether the loads of the last run came from the sums gathered during the assembly
+  /// (AffineLoadSums: full film, smooth faces) rather than the point-by-point integration.
+  bool loads_from_assembled_sums() const;
 
   /// Optional manufactured-solution hooks (tests): Dirichlet data on both circles and an extra
   /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
