@@ -194,9 +194,10 @@ void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const FEValues<2> &f
 template void LoadIntegrator::add_affine_point<ReynoldsSolver::LocalFilm>(
     AffineLoadSums &, const FEValues<2> &, unsigned int, const ReynoldsSolver::LocalFilm &) const;
 
-std::vector<bool> LoadIntegrator::boundary_vertices() const
+std::vector<bool> LoadIntegrator::leakage_cells() const
 {
-  // the ghost layer holds every cell that shares a vertex with an owned one
+  // vertices on a boundary face of an owned or ghost cell (the ghost layer holds every cell that
+  // shares a vertex with an owned one), then the owned cells that touch one
   const auto &tria = solver.dof_handler.get_triangulation();
   std::vector<bool> boundary_vertex(tria.n_vertices(), false);
   for (const auto &cell : tria.active_cell_iterators())
@@ -205,7 +206,26 @@ std::vector<bool> LoadIntegrator::boundary_vertices() const
         if (cell->face(f)->at_boundary())
           for (const unsigned int v : cell->face(f)->vertex_indices())
             boundary_vertex[cell->face(f)->vertex_index(v)] = true;
-  return boundary_vertex;
+  std::vector<bool> leakage_cell(tria.n_active_cells(), false);
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (const unsigned int v : cell->vertex_indices())
+        if (boundary_vertex[cell->vertex_index(v)])
+          leakage_cell[cell->active_cell_index()] = true;
+  return leakage_cell;
+}
+
+void LoadIntegrator::add_leakages(const std::vector<types::global_dof_index> &dofs,
+                                  const Vector<double> &local_residual,
+                                  std::vector<double> &sum) const
+{
+  for (unsigned int i = 0; i < dofs.size(); ++i)
+  {
+    if (solver.inner_boundary_dofs.is_element(dofs[i]))
+      sum[5] += local_residual(i);
+    if (solver.outer_boundary_dofs.is_element(dofs[i]))
+      sum[6] += local_residual(i);
+  }
 }
 
 double LoadIntegrator::friction_face() const
@@ -248,7 +268,7 @@ FilmLoads LoadIntegrator::affine_loads() const
   for (unsigned int i = 0; i < dofs_per_cell; ++i)
     for (unsigned int q = 0; q < n_q; ++q)
       shape(i, q) = s.fe->shape_value(i, quadrature.point(q));
-  const std::vector<bool> boundary_vertex = boundary_vertices();
+  const std::vector<bool> leakage_cell = leakage_cells();
   std::vector<double> p_q(n_q);
   std::vector<Tensor<1, 2>> grad_p(n_q), shape_grad(dofs_per_cell);
   std::vector<double> shape_value(dofs_per_cell);
@@ -270,10 +290,7 @@ FilmLoads LoadIntegrator::affine_loads() const
         p_min = std::min(p_min, p_q[q]);
         p_max = std::max(p_max, p_q[q]);
       }
-      bool boundary_cell = false;
-      for (const unsigned int v : cell->vertex_indices())
-        boundary_cell = boundary_cell || boundary_vertex[cell->vertex_index(v)];
-      if (!boundary_cell)
+      if (!leakage_cell[cell->active_cell_index()])
         continue;
       fe_values.reinit(cell);
       fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
@@ -295,13 +312,7 @@ FilmLoads LoadIntegrator::affine_loads() const
         }
         add_residual(x, none, shape_grad, shape_value, local_residual);
       }
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
-      {
-        if (s.inner_boundary_dofs.is_element(dofs[i]))
-          sums[5] += local_residual(i);
-        if (s.outer_boundary_dofs.is_element(dofs[i]))
-          sums[6] += local_residual(i);
-      }
+      add_leakages(dofs, local_residual, sums);
     }
   for (const auto i : s.locally_owned_dofs)
   {
@@ -452,9 +463,7 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   std::vector<DoFHandler<2>::active_cell_iterator> near_cavity;
   Vector<double> cell_p(dofs_per_cell);
   std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
-  // Vertices on a boundary face of an owned or ghost cell (the ghost layer holds every cell that
-  // shares a vertex with an owned one).
-  const std::vector<bool> boundary_vertex = boundary_vertices();
+  const std::vector<bool> leakage_cell = leakage_cells();
 
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -497,13 +506,8 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
       }
       PointState x;
       x.tau = jfo ? s.streamline_tau(cell) : 0.0;
-      // The residual only enters the sums through the dofs on the two circles (the leakages):
-      // only a cell with a vertex on the boundary has such a dof (a dof inside a boundary edge
-      // belongs to that edge's one cell), the others (all but one row of cells next to each
-      // circle) skip it.
-      bool boundary_cell = false;
-      for (const unsigned int v : cell->vertex_indices())
-        boundary_cell = boundary_cell || boundary_vertex[cell->vertex_index(v)];
+      // the residual enters the sums only through the leakages (leakage_cells)
+      const bool boundary_cell = leakage_cell[cell->active_cell_index()];
       cell->get_dof_indices(dofs);
       for (unsigned int q = 0; q < n_q; ++q)
       {
@@ -547,13 +551,7 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
       }
       if (boundary_cell)
         for (unsigned int k = 0; k < n_k; ++k)
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          {
-            if (s.inner_boundary_dofs.is_element(dofs[i]))
-              sums[k][5] += local_residual_k[k](i);
-            if (s.outer_boundary_dofs.is_element(dofs[i]))
-              sums[k][6] += local_residual_k[k](i);
-          }
+          add_leakages(dofs, local_residual_k[k], sums[k]);
     }
   if (base)
     for (const auto i : s.locally_owned_dofs)

@@ -484,7 +484,9 @@ bool JFOSolver::coarse_start()
   // level is the same mesh refined once less (parent cells); other meshes on one rank: a search
   // over the coarse cells' bounding boxes (values_at_points)
   if (values_on_polar_grid(points, pressure, void_fraction))
-    all_found = true;
+  {
+    // every point found by its (r, theta)
+  }
   else if ((!s.settings.mesh.mesh_file.empty() &&
             values_from_parent_cells(s.dof_handler, coarse.dof_handler, fields, indices, values)) ||
            values_at_points(*coarse.mapping, coarse.dof_handler, fields, points, values))

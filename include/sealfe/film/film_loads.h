@@ -128,8 +128,14 @@ private:
                                    const std::vector<const VectorType *> &dv) const;
   /// loads() from the solver's AffineLoadSums, the leakages from the cells on the circles.
   FilmLoads affine_loads() const;
-  /// Vertices on a boundary face of an owned or ghost cell.
-  std::vector<bool> boundary_vertices() const;
+  /// By active cell index: whether the cell has a vertex on either circle. Only such a cell
+  /// holds a dof on a circle (a dof inside a boundary edge belongs to that edge's one cell), so
+  /// only its residual enters the leakages.
+  std::vector<bool> leakage_cells() const;
+  /// Adds a cell residual's entries at the dofs on the inner and outer circle to the leakage
+  /// sums (sum[5], sum[6]).
+  void add_leakages(const std::vector<dealii::types::global_dof_index> &dofs,
+                    const dealii::Vector<double> &local_residual, std::vector<double> &sum) const;
   /// The sign of the Poiseuille shear in the torque resisting the rotor (add_friction_and_squeeze).
   double friction_face() const;
   /// Nodal cavitation indicator (1 cavitated, 0 full film) of the reynolds and jfo solutions.
