@@ -1,0 +1,205 @@
+#include <sealfe/io/vtu_piece.h>
+
+#include <lz4.h>
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace sealfe
+{
+namespace output
+{
+namespace
+{
+/// Position of lattice point (i, j), i, j in [0, n], in VTK's node order of a Lagrange
+/// quadrilateral of order n: the 4 vertices, the edges (0-1, 1-2, 3-2, 0-3), then the interior
+/// with i fastest (vtkHigherOrderQuadrilateral::PointIndexFromIJK).
+unsigned int vtk_node_index(const unsigned int i, const unsigned int j, const unsigned int n)
+{
+  const bool i_boundary = i == 0 || i == n, j_boundary = j == 0 || j == n;
+  if (i_boundary && j_boundary)
+    return i ? (j ? 2 : 1) : (j ? 3 : 0);
+  if (j_boundary) // on an edge along i
+    return 4 + (i - 1) + (j ? 2 * (n - 1) : 0);
+  if (i_boundary) // on an edge along j
+    return 4 + (j - 1) + (i ? n - 1 : 3 * (n - 1));
+  return 4 + 4 * (n - 1) + (i - 1) + (n - 1) * (j - 1);
+}
+
+/// The appended-data section: every array as VTK's compressed-block header (UInt64: number of
+/// blocks, block size, size of a partial last block or 0, the compressed size of each block)
+/// followed by its LZ4 blocks.
+class AppendedData
+{
+public:
+  /// Appends `bytes` and returns the offset the DataArray element names.
+  std::size_t add(const void *bytes, const std::size_t size)
+  {
+    const std::size_t offset = data.size();
+    const std::size_t n_full = size / block_size, last = size % block_size;
+    const std::size_t n_blocks = n_full + (last ? 1 : 0);
+    std::vector<std::uint64_t> header{n_blocks, block_size, last};
+    std::string blocks;
+    const char *source = static_cast<const char *>(bytes);
+    std::vector<char> buffer(LZ4_compressBound(block_size));
+    for (std::size_t b = 0; b < n_blocks; ++b)
+    {
+      const std::size_t n = (b == n_full) ? last : block_size;
+      const int compressed =
+          LZ4_compress_default(source + b * block_size, buffer.data(), int(n), int(buffer.size()));
+      if (compressed <= 0)
+        throw std::runtime_error("LZ4 could not compress a block of the VTU output");
+      header.push_back(std::uint64_t(compressed));
+      blocks.append(buffer.data(), std::size_t(compressed));
+    }
+    data.append(reinterpret_cast<const char *>(header.data()),
+                header.size() * sizeof(std::uint64_t));
+    data += blocks;
+    return offset;
+  }
+  template <typename T>
+  std::size_t add(const std::vector<T> &values)
+  {
+    return add(values.data(), values.size() * sizeof(T));
+  }
+  const std::string &bytes() const { return data; }
+
+private:
+  // 1 MiB of uncompressed data per block: large enough that the headers cost nothing, small
+  // enough for a reader's buffer
+  static constexpr std::size_t block_size = std::size_t(1) << 20;
+  std::string data;
+};
+
+std::string data_array(const std::string &type, const std::string &name,
+                       const unsigned int components, const std::size_t offset)
+{
+  std::ostringstream s;
+  s << "<DataArray type=\"" << type << "\"";
+  if (!name.empty())
+    s << " Name=\"" << name << "\"";
+  s << " NumberOfComponents=\"" << components << "\" format=\"appended\" offset=\"" << offset
+    << "\"/>\n";
+  return s.str();
+}
+} // namespace
+
+void write_vtu_piece(std::ostream &out,
+                     const std::vector<dealii::DataOutBase::Patch<2, 2>> &patches,
+                     const VtuFields &fields,
+                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data)
+{
+  const unsigned int n_sets = fields.names.size();
+  std::size_t n_points = 0;
+  for (const auto &patch : patches)
+    n_points += (patch.n_subdivisions + 1) * (patch.n_subdivisions + 1);
+  if (n_points > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    throw std::runtime_error("VTU output: more points than a 32-bit connectivity can name");
+
+  // points (patch coordinates if curved, else bilinear between the vertices), connectivity in
+  // VTK's node order, offsets, cell types
+  std::vector<float> points;
+  points.reserve(3 * n_points);
+  std::vector<std::int32_t> connectivity, offsets;
+  connectivity.reserve(n_points);
+  offsets.reserve(patches.size());
+  std::vector<std::uint8_t> types(patches.size(), 70 /* VTK_LAGRANGE_QUADRILATERAL */);
+  std::size_t first = 0;
+  for (const auto &patch : patches)
+  {
+    const unsigned int n = patch.n_subdivisions, per_row = n + 1;
+    for (unsigned int j = 0; j <= n; ++j)
+      for (unsigned int i = 0; i <= n; ++i)
+      {
+        double x, y;
+        if (patch.points_are_available)
+        {
+          x = patch.data(n_sets, i + j * per_row);
+          y = patch.data(n_sets + 1, i + j * per_row);
+        }
+        else
+        {
+          const double u = double(i) / n, v = double(j) / n;
+          const auto p = (1 - u) * (1 - v) * patch.vertices[0] + u * (1 - v) * patch.vertices[1] +
+                         (1 - u) * v * patch.vertices[2] + u * v * patch.vertices[3];
+          x = p[0];
+          y = p[1];
+        }
+        points.insert(points.end(), {float(x), float(y), 0.0f});
+      }
+    std::vector<std::int32_t> cell(per_row * per_row);
+    for (unsigned int j = 0; j <= n; ++j)
+      for (unsigned int i = 0; i <= n; ++i)
+        cell[vtk_node_index(i, j, n)] = std::int32_t(first + i + j * per_row);
+    connectivity.insert(connectivity.end(), cell.begin(), cell.end());
+    first += cell.size();
+    offsets.push_back(std::int32_t(first));
+  }
+
+  AppendedData appended;
+  std::string point_data, cell_arrays;
+  // vectors first (two data sets padded with a zero third component), then the scalars
+  std::vector<bool> in_vector(n_sets, false);
+  for (const auto &[begin, end, name] : fields.vectors)
+  {
+    std::vector<float> values;
+    values.reserve(3 * n_points);
+    for (const auto &patch : patches)
+      for (unsigned int q = 0; q < patch.data.n_cols(); ++q)
+        for (unsigned int c = 0; c < 3; ++c)
+          values.push_back(begin + c <= end ? patch.data(begin + c, q) : 0.0f);
+    for (unsigned int c = begin; c <= end; ++c)
+      in_vector[c] = true;
+    point_data += data_array("Float32", name, 3, appended.add(values));
+  }
+  for (unsigned int set = 0; set < n_sets; ++set)
+    if (!in_vector[set])
+    {
+      std::vector<float> values;
+      values.reserve(n_points);
+      for (const auto &patch : patches)
+        for (unsigned int q = 0; q < patch.data.n_cols(); ++q)
+          values.push_back(patch.data(set, q));
+      point_data += data_array("Float32", fields.names[set], 1, appended.add(values));
+    }
+  for (const auto &[name, values] : cell_data)
+  {
+    if (values.size() != patches.size())
+      throw std::runtime_error("VTU output: cell array " + name + " has the wrong length");
+    std::vector<std::int32_t> v(values.begin(), values.end());
+    cell_arrays += data_array("Int32", name, 1, appended.add(v));
+  }
+  const std::string points_array = data_array("Float32", "", 3, appended.add(points));
+  const std::string cells = data_array("Int32", "connectivity", 1, appended.add(connectivity)) +
+                            data_array("Int32", "offsets", 1, appended.add(offsets)) +
+                            data_array("UInt8", "types", 1, appended.add(types));
+
+  const std::uint16_t one = 1;
+  std::uint8_t first_byte;
+  std::memcpy(&first_byte, &one, 1);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
+      << (first_byte == 1 ? "LittleEndian" : "BigEndian")
+      << "\" header_type=\"UInt64\" compressor=\"vtkLZ4DataCompressor\">\n"
+      << "<UnstructuredGrid>\n"
+      << "<Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << patches.size()
+      << "\">\n"
+      << "<PointData>\n"
+      << point_data << "</PointData>\n"
+      << "<CellData>\n"
+      << cell_arrays << "</CellData>\n"
+      << "<Points>\n"
+      << points_array << "</Points>\n"
+      << "<Cells>\n"
+      << cells << "</Cells>\n"
+      << "</Piece>\n"
+      << "</UnstructuredGrid>\n"
+      << "<AppendedData encoding=\"raw\">\n_";
+  out.write(appended.bytes().data(), std::streamsize(appended.bytes().size()));
+  out << "\n</AppendedData>\n</VTKFile>\n";
+}
+} // namespace output
+} // namespace sealfe
