@@ -30,6 +30,7 @@ FilmLoads FiniteElementFilm::loads(const FilmState &state) const
 {
   // solved in the features' frame (rotor-borne features at their Phase, where the mesh is aligned
   // with their steps), the stator-frame parts turned by -rotor_angle into it
+  last_frame_angle = state.feature_frame_angle(base.geometry);
   return state.turned_back(
       solver.reynolds().run(state.in_feature_frame(base.geometry), state.apply(base.conditions)),
       base.geometry);
@@ -62,6 +63,7 @@ FilmCoefficients FiniteElementFilm::coefficients(const FilmState &state) const
   const OperatingConditions conditions = state.apply(base.conditions);
   FilmCoefficients k = solver.coefficients(state.in_feature_frame(base.geometry), conditions);
   const double angle = state.feature_frame_angle(base.geometry);
+  last_frame_angle = angle;
   if (angle != 0)
   {
     k.stiffness = turned_matrix(k.stiffness, angle);

@@ -601,6 +601,7 @@ TransientSample StatorTransient::sample(const double t, const State &y) const
   TransientSample s;
   s.time = t;
   s.rotor_speed = e.state.rotor_speed;
+  s.rotor_angle = e.shaft_angle;
   s.inner_pressure = e.state.inner_pressure;
   s.outer_pressure = e.state.outer_pressure;
   s.axial_offset = y[0];

@@ -262,6 +262,7 @@ std::string csv_text(const std::vector<TransientSample> &rows)
   const std::string none = csv::dimensionless;
   csv::Writer out({{"time", "s"},
                    {"rotor_speed", "rad/s"},
+                   {"rotor_angle", "rad"},
                    {"inner_pressure", "Pa"},
                    {"outer_pressure", "Pa"},
                    {"axial_offset", "m"},
@@ -283,28 +284,12 @@ std::string csv_text(const std::vector<TransientSample> &rows)
                    {"friction_torque", "N m"},
                    {"leaked_volume", "m^3"}});
   for (const auto &s : rows)
-    out.add_row({s.time,
-                 s.rotor_speed,
-                 s.inner_pressure,
-                 s.outer_pressure,
-                 s.axial_offset,
-                 s.stator_tilt(),
-                 s.stator_precession(),
-                 s.relative_tilt,
-                 s.coning,
-                 s.min_film,
-                 s.min_film_over_sigma,
-                 s.heating_film,
-                 s.film_force,
-                 s.contact_force,
-                 s.closing_force,
-                 s.film_moment_x,
-                 s.film_moment_y,
-                 s.contact_moment_x,
-                 s.contact_moment_y,
-                 s.leakage_inner,
-                 s.friction_torque,
-                 s.leaked_volume});
+    out.add_row({s.time,           s.rotor_speed,     s.rotor_angle,      s.inner_pressure,
+                 s.outer_pressure, s.axial_offset,    s.stator_tilt(),    s.stator_precession(),
+                 s.relative_tilt,  s.coning,          s.min_film,         s.min_film_over_sigma,
+                 s.heating_film,   s.film_force,      s.contact_force,    s.closing_force,
+                 s.film_moment_x,  s.film_moment_y,   s.contact_moment_x, s.contact_moment_y,
+                 s.leakage_inner,  s.friction_torque, s.leaked_volume});
   return out.text();
 }
 
@@ -392,8 +377,10 @@ nlohmann::json run(dealii::ParameterHandler &prm, const std::string &dir)
         return;
       while (next_field < field_times.size() && t >= field_times[next_field] - 1e-12)
         ++next_field;
-      field_records.emplace_back(
-          t, write_film_fields(fe->reynolds(), dir, "transient_fields", field_records.size()));
+      // drawn in the stator frame: rotor-borne features where they stand at t
+      field_records.emplace_back(t, write_film_fields(fe->reynolds(), dir, "transient_fields",
+                                                      field_records.size(), FieldSelection(),
+                                                      fe->frame_angle()));
     };
   }
   // SIGINT / SIGTERM stop the integration after the current output row: the rows so far are

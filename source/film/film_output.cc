@@ -233,7 +233,7 @@ void FieldSelection::check_against(const FilmSettings &settings) const
 
 std::string write_film_fields(const ReynoldsSolver &s, const std::string &directory,
                               const std::string &basename, const unsigned int counter,
-                              const FieldSelection &fields)
+                              const FieldSelection &fields, const double frame_angle)
 {
   // Only the fields that carry information for this model (and, with an Output/Fields list,
   // that were asked for): the Patir & Cheng quantities with rough faces, the contact pressure
@@ -297,7 +297,8 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   {
     std::ofstream piece(directory + "/" + piece_name(rank), std::ios::binary);
     output::write_vtu_piece(piece, data_out.get_patches(), data_out.fields(),
-                            {{"rank", std::vector<int>(data_out.get_patches().size(), int(rank))}});
+                            {{"rank", std::vector<int>(data_out.get_patches().size(), int(rank))}},
+                            frame_angle);
     if (!piece.flush())
       throw std::runtime_error("cannot write the field file " + directory + "/" + piece_name(rank));
   }

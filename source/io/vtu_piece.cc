@@ -2,6 +2,7 @@
 
 #include <lz4.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -90,8 +91,10 @@ std::string data_array(const std::string &type, const std::string &name,
 void write_vtu_piece(std::ostream &out,
                      const std::vector<dealii::DataOutBase::Patch<2, 2>> &patches,
                      const VtuFields &fields,
-                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data)
+                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data,
+                     const double rotation)
 {
+  const double cos_r = std::cos(rotation), sin_r = std::sin(rotation);
   const unsigned int n_sets = fields.names.size();
   std::size_t n_points = 0;
   for (const auto &patch : patches)
@@ -128,7 +131,8 @@ void write_vtu_piece(std::ostream &out,
           x = p[0];
           y = p[1];
         }
-        points.insert(points.end(), {float(x), float(y), 0.0f});
+        points.insert(points.end(),
+                      {float(cos_r * x - sin_r * y), float(sin_r * x + cos_r * y), 0.0f});
       }
     std::vector<std::int32_t> cell(per_row * per_row);
     for (unsigned int j = 0; j <= n; ++j)
@@ -149,8 +153,11 @@ void write_vtu_piece(std::ostream &out,
     values.reserve(3 * n_points);
     for (const auto &patch : patches)
       for (unsigned int q = 0; q < patch.data.n_cols(); ++q)
-        for (unsigned int c = 0; c < 3; ++c)
-          values.push_back(begin + c <= end ? patch.data(begin + c, q) : 0.0f);
+      {
+        const double vx = patch.data(begin, q), vy = begin < end ? patch.data(begin + 1, q) : 0.0;
+        values.insert(values.end(),
+                      {float(cos_r * vx - sin_r * vy), float(sin_r * vx + cos_r * vy), 0.0f});
+      }
     for (unsigned int c = begin; c <= end; ++c)
       in_vector[c] = true;
     point_data += data_array("Float32", name, 3, appended.add(values));

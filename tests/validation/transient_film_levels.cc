@@ -185,4 +185,7 @@ TEST(TransientFilmLevels, FiniteElementTransientSettlesOnTheEquilibrium)
   const double z_end = csv.at("axial_offset").back();
   std::cout << "level 2: Z(25 s) = " << z_end << " m, equilibrium " << z_eq << " m" << std::endl;
   EXPECT_NEAR(z_end / C0, z_eq / C0, 1e-6);
+  // the rotor angle column is Int omega dt: omega t at the constant 1500 rad/s (37 500 rad at
+  // 25 s; the CSV holds every double exactly, the ramp integral is exact for a constant speed)
+  EXPECT_NEAR(csv.at("rotor_angle").back(), 1500.0 * 25, 1e-12 * 1500.0 * 25);
 }

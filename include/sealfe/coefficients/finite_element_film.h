@@ -41,6 +41,9 @@ public:
 
   /// The solver (mesh, dofs, last solution), e.g. for n_dofs() and n_setups().
   const ReynoldsSolver &reynolds() const { return solver.reynolds(); }
+  /// The angle (rad) of the frame of the last solve from the stator frame: the rotor angle when
+  /// rotor-borne features turned the film into their frame, else 0 (write_film_fields).
+  double frame_angle() const { return last_frame_angle; }
   const FilmSettings &settings() const { return base; }
 
 private:
@@ -48,6 +51,7 @@ private:
   MPI_Comm comm;
   mutable CoefficientSolver solver;
   mutable unsigned int n_evaluations = 0;
+  mutable double last_frame_angle = 0;
 };
 
 } // namespace sealfe

@@ -104,6 +104,7 @@ struct TransientSettings
 struct TransientSample
 {
   double time, rotor_speed, inner_pressure, outer_pressure;
+  double rotor_angle; ///< rad, Int omega dt from t = 0: where rotor-borne features stand
   double axial_offset, axial_velocity;
   double stator_tilt_x, stator_tilt_y, rotor_tilt_x, rotor_tilt_y;
   double relative_tilt, coning, min_film, min_film_over_sigma, heating_film;

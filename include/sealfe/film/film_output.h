@@ -39,9 +39,13 @@ std::string write_film_output(const ReynoldsSolver &solver, const std::string &d
                               const FieldSelection &fields = FieldSelection());
 
 /// The same fields as `<basename>_<counter>.pvtu` (+ its VTU pieces) without a PVD, for a time
-/// series whose PVD the caller writes; returns the PVTU file name.
+/// series whose PVD the caller writes; returns the PVTU file name. `frame_angle`: the angle of
+/// the frame the solver worked in from the stator frame (rotor-borne features at rotor angle phi
+/// are solved in their own frame, FilmState::feature_frame_angle); the points and the flux are
+/// turned by it, so that every picture of a time series stands in the stator frame.
 std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
                               const std::string &basename, unsigned int counter,
-                              const FieldSelection &fields = FieldSelection());
+                              const FieldSelection &fields = FieldSelection(),
+                              double frame_angle = 0);
 
 } // namespace sealfe

@@ -181,7 +181,7 @@ private:
                                        const FieldSelection &fields);
   friend std::string write_film_fields(const ReynoldsSolver &solver, const std::string &directory,
                                        const std::string &basename, unsigned int counter,
-                                       const FieldSelection &fields);
+                                       const FieldSelection &fields, double frame_angle);
 
   void setup_system(const unsigned int coarsening);
   void setup_constraints();

@@ -26,10 +26,13 @@ struct VtuFields
 /// Writes `patches` (2D, any subdivision n: (n + 1)^2 points each, coordinates from the patch
 /// data when the patch is curved) as one VTU piece of VTK_LAGRANGE_QUADRILATERAL cells of order
 /// n, Float32 points and point data (2D vectors padded to 3 components), and each of
-/// `cell_data` as an Int32 cell array of one value per patch.
+/// `cell_data` as an Int32 cell array of one value per patch. The points and the vectors are
+/// turned by `rotation` (rad, counter-clockwise about z): a field computed in a turned frame is
+/// drawn in the frame of the picture.
 void write_vtu_piece(std::ostream &out,
                      const std::vector<dealii::DataOutBase::Patch<2, 2>> &patches,
                      const VtuFields &fields,
-                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data);
+                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data,
+                     double rotation = 0);
 } // namespace output
 } // namespace sealfe
