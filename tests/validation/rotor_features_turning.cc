@@ -308,8 +308,10 @@ TEST(RotorFeatures, AxisymmetricFilmLoadsDoNotDependOnTheRotorAngle)
 // omega t^2 / (2 t1) on the ramp, omega (t - t1/2) after it), the stator held tilted in space.
 // The stator carries 3 waves. The film's moments in the inertial frame are those of the
 // stationary face with the pads drawn at phi(t) (built independently), in both integration
-// frames (inertial, turning with the shaft); at constant speed they repeat after T = 2 pi / (N
-// omega) = 20.9 ms, and half of T on they differ: the moments oscillate at N omega.
+// frames (inertial, turning with the shaft), also with the relative tilt turning in space at a
+// rate g (seen in the turning frame as a' = R(-phi) g - omega J a); at constant speed they repeat
+// after T = 2 pi / (N omega) = 20.9 ms, and half of T on they differ: the moments oscillate at
+// N omega.
 TEST(RotorFeatures, TransientMomentsOscillateAtThePadFrequency)
 {
   const double omega = 100, t1 = 0.02;
@@ -344,43 +346,53 @@ TEST(RotorFeatures, TransientMomentsOscillateAtThePadFrequency)
   double moment_scale = 0;
   std::vector<std::array<double, 2>> inertial_moments;
   for (const double t : {0.011, 0.05, 0.05 + period, 0.05 + 0.5 * period})
-  {
-    // the stationary face with the pads at phi(t), the stator's tilt where it is
-    const double phi = rotor_angle(t);
-    const FiniteElementFilm placed(wavy_pads(phi), MPI_COMM_WORLD);
-    FilmState state = FilmState::from(settings.geometry, settings.conditions);
-    state.tilt_x = tilt[0];
-    state.tilt_y = tilt[1];
-    state.rotor_speed = seal.ramps.speed.value(t);
-    state.time = t;
-    const FilmLoads expected = placed.loads(state);
-    moment_scale = std::max(moment_scale, std::abs(expected.force_z) * ro);
-    for (const std::string frame : {"inertial", "rotating"})
+    for (const double rate : {0.0, 1.0})
     {
-      TransientSettings ts;
-      ts.frame = frame;
-      const StatorTransient transient(seal, film, ts);
-      TransientState y{};
-      // the relative tilt in the integration frame, its inertial rate 0 (film_state: the film
-      // takes a' + omega J a in the turning frame)
-      const bool rotating = frame == "rotating";
-      const auto a = turned(tilt, rotating ? -seal.ramps.speed.integral(t) : 0.0);
-      y[2] = a[0];
-      y[3] = a[1];
-      y[4] = rotating ? state.rotor_speed * a[1] : 0.0;
-      y[5] = rotating ? -state.rotor_speed * a[0] : 0.0;
-      const TransientSample sample = transient.sample(t, y);
-      std::cout << "t = " << t << " s, phi = " << phi << ", " << frame << " frame: moments "
-                << sample.film_moment_x << ", " << sample.film_moment_y << " N m (pads drawn at "
-                << "phi: " << expected.moment_x << ", " << expected.moment_y << "), force "
-                << sample.film_force << " (" << expected.force_z << ")\n";
-      EXPECT_NEAR(sample.film_force, expected.force_z, 1e-8 * std::abs(expected.force_z));
-      EXPECT_NEAR(sample.film_moment_x, expected.moment_x, 1e-8 * std::abs(expected.force_z) * ro);
-      EXPECT_NEAR(sample.film_moment_y, expected.moment_y, 1e-8 * std::abs(expected.force_z) * ro);
-      if (!rotating)
-        inertial_moments.push_back({{sample.film_moment_x, sample.film_moment_y}});
+      // the stationary face with the pads at phi(t), the stator's tilt where it is; with `rate`,
+      // the relative tilt also turning in space at 2e-3, -1e-3 rad/s (the squeeze of a nutating
+      // stator; its rate as seen in the integration frame below)
+      const std::array<double, 2> tilt_rate{{2e-3 * rate, -1e-3 * rate}};
+      const double phi = rotor_angle(t);
+      const FiniteElementFilm placed(wavy_pads(phi), MPI_COMM_WORLD);
+      FilmState state = FilmState::from(settings.geometry, settings.conditions);
+      state.tilt_x = tilt[0];
+      state.tilt_y = tilt[1];
+      state.tilt_rate_x = tilt_rate[0];
+      state.tilt_rate_y = tilt_rate[1];
+      state.rotor_speed = seal.ramps.speed.value(t);
+      state.time = t;
+      const FilmLoads expected = placed.loads(state);
+      moment_scale = std::max(moment_scale, std::abs(expected.force_z) * ro);
+      for (const std::string frame : {"inertial", "rotating"})
+      {
+        TransientSettings ts;
+        ts.frame = frame;
+        const StatorTransient transient(seal, film, ts);
+        TransientState y{};
+        // the relative tilt in the integration frame and its rate there: the inertial rate g
+        // turned into the frame, minus omega J a in the turning frame (film_state: the film takes
+        // a' + omega J a there, turned back into space)
+        const bool rotating = frame == "rotating";
+        const double psi = rotating ? -seal.ramps.speed.integral(t) : 0.0;
+        const auto a = turned(tilt, psi), g = turned(tilt_rate, psi);
+        y[2] = a[0];
+        y[3] = a[1];
+        y[4] = g[0] + (rotating ? state.rotor_speed * a[1] : 0.0);
+        y[5] = g[1] - (rotating ? state.rotor_speed * a[0] : 0.0);
+        const TransientSample sample = transient.sample(t, y);
+        std::cout << "t = " << t << " s, phi = " << phi << ", " << frame << " frame: moments "
+                  << sample.film_moment_x << ", " << sample.film_moment_y << " N m (pads drawn at "
+                  << "phi: " << expected.moment_x << ", " << expected.moment_y << "), force "
+                  << sample.film_force << " (" << expected.force_z << ")\n";
+        EXPECT_NEAR(sample.film_force, expected.force_z, 1e-8 * std::abs(expected.force_z));
+        EXPECT_NEAR(sample.film_moment_x, expected.moment_x,
+                    1e-8 * std::abs(expected.force_z) * ro);
+        EXPECT_NEAR(sample.film_moment_y, expected.moment_y,
+                    1e-8 * std::abs(expected.force_z) * ro);
+        if (!rotating && rate == 0)
+          inertial_moments.push_back({{sample.film_moment_x, sample.film_moment_y}});
+      }
     }
-  }
   // inertial_moments: t = 0.011, 0.05, 0.05 + T, 0.05 + T/2
   const auto difference = [&](const unsigned int i, const unsigned int j)
   {
