@@ -534,26 +534,48 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
                                      std::vector<double> &void_fraction) const
 {
   const ReynoldsSolver &coarse = *s.coarse_solver;
-  if (!s.settings.mesh.mesh_file.empty() || Utilities::MPI::n_mpi_processes(s.mpi_communicator) > 1)
+  const MPI_Comm comm = s.mpi_communicator;
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+  if (!s.settings.mesh.mesh_file.empty())
     return false;
   // The built-in mesh is a tensor grid in (r, theta): radial nodes (graded) and nt equal angles.
   // Its cells are found from a point's polar coordinates; the reference coordinates inside the
   // cell are those of the polar rectangle, which the cell's mapping follows up to its O(h^3)
   // departure from the circles: far below the discretisation error, and this is only the start
   // of the Newton iteration on the finer mesh.
+  // Several ranks: each rank holds its own and its ghost cells of the coarse level. The two
+  // levels are refinements of the same p4est coarse grid, partitioned alike, so a fine rank's
+  // points lie in its own coarse cells (measured: none missing on 2 ranks); a point in a cell
+  // the rank does not hold gets that cell's vertices and nodal values from its owner.
   const auto &tria = coarse.dof_handler.get_triangulation();
+  const double tolerance = 1e-9 * s.film.outer_radius;
+  auto unique_radii = [tolerance](std::vector<double> &r)
+  {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end(),
+                        [tolerance](double a, double b) { return b - a < tolerance; }),
+            r.end());
+  };
   std::vector<double> radii;
-  for (const Point<2> &v : tria.get_vertices())
-    radii.push_back(v.norm());
-  std::sort(radii.begin(), radii.end());
-  const double ri = radii.front(), ro = radii.back(), tolerance = 1e-9 * ro;
-  radii.erase(std::unique(radii.begin(), radii.end(),
-                          [tolerance](double a, double b) { return b - a < tolerance; }),
-              radii.end());
+  const std::vector<bool> &used = tria.get_used_vertices();
+  for (unsigned int k = 0; k < tria.n_vertices(); ++k)
+    if (used[k])
+      radii.push_back(tria.get_vertices()[k].norm());
+  unique_radii(radii);
+  if (n_ranks > 1)
+  {
+    // every radius is a vertex of some rank's cells; all ranks then agree on the grid
+    std::vector<double> all;
+    for (const auto &r : Utilities::MPI::all_gather(comm, radii))
+      all.insert(all.end(), r.begin(), r.end());
+    radii = std::move(all);
+    unique_radii(radii);
+  }
+  const double ri = radii.front(), ro = radii.back();
   const unsigned int nr = radii.size() - 1;
-  if (nr == 0 || tria.n_active_cells() % nr != 0)
+  if (nr == 0 || tria.n_global_active_cells() % nr != 0)
     return false;
-  const unsigned int nt = tria.n_active_cells() / nr;
+  const unsigned int nt = tria.n_global_active_cells() / nr;
   const double dtheta = 2 * M_PI / nt;
   auto angle = [](const Point<2> &x)
   {
@@ -567,49 +589,114 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
   };
   auto angular_index = [&](const double t)
   { return std::min<unsigned int>(static_cast<unsigned int>(t / dtheta), nt - 1); };
-  std::vector<DoFHandler<2>::active_cell_iterator> cells(nr * nt);
+  std::vector<DoFHandler<2>::active_cell_iterator> cells(std::size_t(nr) * nt);
+  int not_polar = 0;
   for (const auto &cell : coarse.dof_handler.active_cell_iterators())
-  {
-    const Point<2> c = cell->center();
-    const std::size_t k = angular_index(angle(c)) * nr + radial_index(c.norm());
-    if (cells[k].state() == IteratorState::valid)
-      return false; // two cells in one slot: not a polar tensor grid
-    cells[k] = cell;
-  }
+    if (!cell->is_artificial())
+    {
+      // the slot of the cell's mean radius and mean angle (the norm of its vertex mean lies
+      // below the cell when the cells span large angles: 8 cells around put it 8 % inside)
+      double r = 0;
+      for (const unsigned int v : cell->vertex_indices())
+        r += 0.25 * cell->vertex(v).norm();
+      const std::size_t k = angular_index(angle(cell->center())) * nr + radial_index(r);
+      if (cells[k].state() == IteratorState::valid)
+      {
+        not_polar = 1; // two cells in one slot: not a polar tensor grid
+        break;
+      }
+      cells[k] = cell;
+    }
+  if (Utilities::MPI::max(not_polar, comm) != 0)
+    return false;
   const FiniteElement<2> &fe = *coarse.fe;
-  Vector<double> p_nodal(fe.n_dofs_per_cell()), v_nodal(fe.n_dofs_per_cell());
+  const unsigned int n = fe.n_dofs_per_cell();
+  // one cell's data: vertices 0, 1, 2 (x, y), then n nodal pressures and n void fractions
+  const unsigned int record = 6 + 2 * n;
+  Vector<double> nodal(n);
+  auto cell_record = [&](const DoFHandler<2>::active_cell_iterator &cell, double *out)
+  {
+    for (unsigned int v = 0; v < 3; ++v)
+      for (unsigned int d = 0; d < 2; ++d)
+        out[2 * v + d] = cell->vertex(v)[d];
+    cell->get_dof_values(coarse.locally_relevant_solution, nodal);
+    std::copy(nodal.begin(), nodal.end(), out + 6);
+    cell->get_dof_values(coarse.locally_relevant_void, nodal);
+    std::copy(nodal.begin(), nodal.end(), out + 6 + n);
+  };
   pressure.resize(points.size());
   void_fraction.resize(points.size());
-  // (r, theta) of vertex k of a cell, theta unwrapped next to `near`
+  // (r, theta) of a vertex, theta unwrapped next to `near`
   auto polar = [&](const Point<2> &x, const double near)
   {
     double t = angle(x);
     t += 2 * M_PI * std::round((near - t) / (2 * M_PI));
     return Tensor<1, 2>({x.norm(), t});
   };
-  for (std::size_t q = 0; q < points.size(); ++q)
+  auto evaluate = [&](const std::size_t q, const double *data)
   {
     const double r = std::clamp(points[q].norm(), ri, ro), t = angle(points[q]);
-    const auto &cell = cells[angular_index(t) * nr + radial_index(r)];
     // the polar rectangle P(xi, eta) = P0 + xi (P1 - P0) + eta (P2 - P0) of vertices 0, 1, 2
-    const Tensor<1, 2> P0 = polar(cell->vertex(0), t), P1 = polar(cell->vertex(1), t),
-                       P2 = polar(cell->vertex(2), t), P = Tensor<1, 2>({r, t});
+    const Tensor<1, 2> P0 = polar(Point<2>(data[0], data[1]), t),
+                       P1 = polar(Point<2>(data[2], data[3]), t),
+                       P2 = polar(Point<2>(data[4], data[5]), t), P = Tensor<1, 2>({r, t});
     const Tensor<1, 2> e1 = P1 - P0, e2 = P2 - P0, d = P - P0;
     const double det = e1[0] * e2[1] - e1[1] * e2[0];
     const Point<2> unit(std::clamp((d[0] * e2[1] - d[1] * e2[0]) / det, 0.0, 1.0),
                         std::clamp((e1[0] * d[1] - e1[1] * d[0]) / det, 0.0, 1.0));
-    cell->get_dof_values(coarse.locally_relevant_solution, p_nodal);
-    cell->get_dof_values(coarse.locally_relevant_void, v_nodal);
     double p = 0, v = 0;
-    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+    for (unsigned int k = 0; k < n; ++k)
     {
       const double phi = fe.shape_value(k, unit);
-      p += p_nodal[k] * phi;
-      v += v_nodal[k] * phi;
+      p += data[6 + k] * phi;
+      v += data[6 + n + k] * phi;
     }
     pressure[q] = p;
     void_fraction[q] = v;
+  };
+  auto slot_of = [&](const Point<2> &x) {
+    return angular_index(angle(x)) * std::size_t(nr) + radial_index(std::clamp(x.norm(), ri, ro));
+  };
+  std::vector<double> data(record);
+  std::vector<std::size_t> missing; // points whose cell this rank does not hold
+  for (std::size_t q = 0; q < points.size(); ++q)
+  {
+    const auto &cell = cells[slot_of(points[q])];
+    if (cell.state() != IteratorState::valid)
+    {
+      missing.push_back(q);
+      continue;
+    }
+    cell_record(cell, data.data());
+    evaluate(q, data.data());
   }
+  if (n_ranks == 1 || Utilities::MPI::sum<unsigned long long>(missing.size(), comm) == 0)
+    return true;
+  // the cells of the missing points from their owners: every rank learns all requests and
+  // answers those for the cells it owns
+  std::vector<unsigned long long> wanted;
+  for (const std::size_t q : missing)
+    wanted.push_back(slot_of(points[q]));
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  const auto requests = Utilities::MPI::all_gather(comm, wanted);
+  std::map<unsigned int, std::vector<double>> answers;
+  for (unsigned int rank = 0; rank < n_ranks; ++rank)
+    for (const auto k : requests[rank])
+      if (cells[k].state() == IteratorState::valid && cells[k]->is_locally_owned())
+      {
+        auto &out = answers[rank];
+        out.push_back(k);
+        out.resize(out.size() + record);
+        cell_record(cells[k], out.data() + out.size() - record);
+      }
+  std::map<std::size_t, std::vector<double>> received;
+  for (const auto &[rank, values] : Utilities::MPI::some_to_some(comm, answers))
+    for (std::size_t i = 0; i + record < values.size(); i += record + 1)
+      received[std::size_t(values[i])].assign(values.begin() + i + 1,
+                                              values.begin() + i + 1 + record);
+  for (const std::size_t q : missing)
+    evaluate(q, received.at(slot_of(points[q])).data());
   return true;
 }
 

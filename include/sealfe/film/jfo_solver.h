@@ -52,8 +52,9 @@ private:
   /// settings); false if it fails or its mesh does not cover this one.
   bool coarse_start();
   /// The coarse level's nodal pressure and void fraction at `points` when both meshes are the
-  /// built-in polar grid on one rank: cells found by (r, theta), no point search. Returns false
-  /// (and leaves the outputs undefined) for any other mesh.
+  /// built-in polar grid: cells found by (r, theta), no point search; on several ranks a point in
+  /// a cell this rank does not hold gets the cell's data from its owner. Returns false (on every
+  /// rank, and leaves the outputs undefined) for any other mesh. Collective.
   bool values_on_polar_grid(const std::vector<dealii::Point<2>> &points,
                             std::vector<double> &pressure,
                             std::vector<double> &void_fraction) const;
