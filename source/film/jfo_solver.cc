@@ -544,9 +544,10 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
   // departure from the circles: far below the discretisation error, and this is only the start
   // of the Newton iteration on the finer mesh.
   // Several ranks: each rank holds its own and its ghost cells of the coarse level. The two
-  // levels are refinements of the same p4est coarse grid, partitioned alike, so a fine rank's
-  // points lie in its own coarse cells (measured: none missing on 2 ranks); a point in a cell
-  // the rank does not hold gets that cell's vertices and nodal values from its owner.
+  // levels are mostly refinements of the same p4est coarse grid, partitioned alike, so a fine
+  // rank's points lie in its own or ghost coarse cells (measured: all of them on 2 ranks; on 3-5
+  // ranks 1600-2600 of 1e4 points are not); a point in a cell the rank does not hold gets that
+  // cell's vertices and nodal values from its owner (scripts/compare_mpi.sh runs 3 ranks).
   const auto &tria = coarse.dof_handler.get_triangulation();
   const double tolerance = 1e-9 * s.film.outer_radius;
   auto unique_radii = [tolerance](std::vector<double> &r)
