@@ -18,10 +18,10 @@ namespace
 /// ~0.5 s small run (doc/performance.md). Ask for the shared-memory-free, isolated singleton
 /// instead; a setting the user made in the environment wins (setenv does not overwrite).
 /// Under Open MPI's mpirun with every rank on this node (OMPI_COMM_WORLD_LOCAL_SIZE equal to
-/// OMPI_COMM_WORLD_SIZE) the ranks talk through shared memory: the ob1 layer, which Open MPI
-/// falls back to after probing UCX in vain on this machine (`mpirun -np 2` of a bare MPI_Init
-/// program: 0.42-0.52 s, with ob1 asked for 0.21-0.29 s; doc/performance.md "Two ranks,
-/// session 10"). Across nodes the choice is left to Open MPI.
+/// OMPI_COMM_WORLD_SIZE) the ranks talk through shared memory, by the ob1 layer, which Open MPI
+/// picks only after opening the cm layer and its PSM/PSM2 (Omni-Path) transports: ~0.2 s per run
+/// (`mpirun -np 2` of a bare MPI_Init program: 0.41-0.49 s, with ob1 asked for 0.22-0.27 s;
+/// doc/performance.md "Two ranks, session 10"). Across nodes the choice is left to Open MPI.
 void choose_transport()
 {
   const char *size = std::getenv("OMPI_COMM_WORLD_SIZE"),
