@@ -35,8 +35,8 @@ PY
 # full film with the direct solver, CG + AMG and CG + geometric multigrid (8 x 64 cells refined
 # once: two levels, so that the 2-rank paths of the level transfer and of the finest level's
 # numbering run), and the mass-conserving JFO cavitation (a wavy seal at a low sealed pressure)
-# with the direct solver, also on 3 ranks: there some points of the JFO coarse start lie in coarse
-# cells of another rank (fetched from it; on 2 ranks none do)
+# with the direct solver, also on 3 ranks (its coarse levels solved whole on every rank, the
+# finest level split unevenly among the coarse grid's trees)
 for solver in direct cg-amg cg-gmg jfo; do
   case " $cases " in *" $solver "*) ;; *) continue ;; esac
   cavitation=none

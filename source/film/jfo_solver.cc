@@ -446,8 +446,18 @@ bool JFOSolver::coarse_start()
 {
   // The coarse level solves the same physics: a copy of the whole settings (flow factors and
   // contact included) and the same test hooks. Kept in the solver, so that its mesh is reused.
+  // Several ranks on the built-in mesh: every rank solves the coarse levels whole by itself
+  // (MPI_COMM_SELF), as one rank would, instead of all ranks together. They are small (a quarter
+  // of this level and less) but need many direct factorisations, which on 2 ranks took 7x the
+  // one-rank time (44 against 6 s at 1.05e6 dofs, doc/performance.md "Two ranks, session 10");
+  // each rank then holds the whole coarse solution, and its start values are those of one rank.
+  // Meshes from files stay distributed (each rank would read, or generate, the file again).
+  const bool whole_on_each_rank = Utilities::MPI::n_mpi_processes(s.mpi_communicator) > 1 &&
+                                  s.settings.mesh.mesh_file.empty() &&
+                                  !(s.settings.mesh.mesh_size > 0);
   if (!s.coarse_solver)
-    s.coarse_solver = std::make_unique<ReynoldsSolver>(s.settings, s.mpi_communicator);
+    s.coarse_solver = std::make_unique<ReynoldsSolver>(
+        s.settings, whole_on_each_rank ? MPI_COMM_SELF : s.mpi_communicator);
   ReynoldsSolver &coarse = *s.coarse_solver;
   coarse.settings = s.settings;
   coarse.boundary_pressure = s.boundary_pressure;
@@ -534,49 +544,28 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
                                      std::vector<double> &void_fraction) const
 {
   const ReynoldsSolver &coarse = *s.coarse_solver;
-  const MPI_Comm comm = s.mpi_communicator;
-  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-  if (!s.settings.mesh.mesh_file.empty())
+  // the coarse mesh whole on this rank (one rank, or coarse_start's levels on each rank)
+  if (!s.settings.mesh.mesh_file.empty() ||
+      Utilities::MPI::n_mpi_processes(coarse.mpi_communicator) > 1)
     return false;
   // The built-in mesh is a tensor grid in (r, theta): radial nodes (graded) and nt equal angles.
   // Its cells are found from a point's polar coordinates; the reference coordinates inside the
   // cell are those of the polar rectangle, which the cell's mapping follows up to its O(h^3)
   // departure from the circles: far below the discretisation error, and this is only the start
   // of the Newton iteration on the finer mesh.
-  // Several ranks: each rank holds its own and its ghost cells of the coarse level. The two
-  // levels are mostly refinements of the same p4est coarse grid, partitioned alike, so a fine
-  // rank's points lie in its own or ghost coarse cells (measured: all of them on 2 ranks; on 3-5
-  // ranks 1600-2600 of 1e4 points are not); a point in a cell the rank does not hold gets that
-  // cell's vertices and nodal values from its owner (scripts/compare_mpi.sh runs 3 ranks).
   const auto &tria = coarse.dof_handler.get_triangulation();
-  const double tolerance = 1e-9 * s.film.outer_radius;
-  auto unique_radii = [tolerance](std::vector<double> &r)
-  {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end(),
-                        [tolerance](double a, double b) { return b - a < tolerance; }),
-            r.end());
-  };
   std::vector<double> radii;
-  const std::vector<bool> &used = tria.get_used_vertices();
-  for (unsigned int k = 0; k < tria.n_vertices(); ++k)
-    if (used[k])
-      radii.push_back(tria.get_vertices()[k].norm());
-  unique_radii(radii);
-  if (n_ranks > 1)
-  {
-    // every radius is a vertex of some rank's cells; all ranks then agree on the grid
-    std::vector<double> all;
-    for (const auto &r : Utilities::MPI::all_gather(comm, radii))
-      all.insert(all.end(), r.begin(), r.end());
-    radii = std::move(all);
-    unique_radii(radii);
-  }
-  const double ri = radii.front(), ro = radii.back();
+  for (const Point<2> &v : tria.get_vertices())
+    radii.push_back(v.norm());
+  std::sort(radii.begin(), radii.end());
+  const double ri = radii.front(), ro = radii.back(), tolerance = 1e-9 * ro;
+  radii.erase(std::unique(radii.begin(), radii.end(),
+                          [tolerance](double a, double b) { return b - a < tolerance; }),
+              radii.end());
   const unsigned int nr = radii.size() - 1;
-  if (nr == 0 || tria.n_global_active_cells() % nr != 0)
+  if (nr == 0 || tria.n_active_cells() % nr != 0)
     return false;
-  const unsigned int nt = tria.n_global_active_cells() / nr;
+  const unsigned int nt = tria.n_active_cells() / nr;
   const double dtheta = 2 * M_PI / nt;
   auto angle = [](const Point<2> &x)
   {
@@ -590,114 +579,53 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
   };
   auto angular_index = [&](const double t)
   { return std::min<unsigned int>(static_cast<unsigned int>(t / dtheta), nt - 1); };
-  std::vector<DoFHandler<2>::active_cell_iterator> cells(std::size_t(nr) * nt);
-  int not_polar = 0;
+  std::vector<DoFHandler<2>::active_cell_iterator> cells(nr * nt);
   for (const auto &cell : coarse.dof_handler.active_cell_iterators())
-    if (!cell->is_artificial())
-    {
-      // the slot of the cell's mean radius and mean angle (the norm of its vertex mean lies
-      // below the cell when the cells span large angles: 8 cells around put it 8 % inside)
-      double r = 0;
-      for (const unsigned int v : cell->vertex_indices())
-        r += 0.25 * cell->vertex(v).norm();
-      const std::size_t k = angular_index(angle(cell->center())) * nr + radial_index(r);
-      if (cells[k].state() == IteratorState::valid)
-      {
-        not_polar = 1; // two cells in one slot: not a polar tensor grid
-        break;
-      }
-      cells[k] = cell;
-    }
-  if (Utilities::MPI::max(not_polar, comm) != 0)
-    return false;
-  const FiniteElement<2> &fe = *coarse.fe;
-  const unsigned int n = fe.n_dofs_per_cell();
-  // one cell's data: vertices 0, 1, 2 (x, y), then n nodal pressures and n void fractions
-  const unsigned int record = 6 + 2 * n;
-  Vector<double> nodal(n);
-  auto cell_record = [&](const DoFHandler<2>::active_cell_iterator &cell, double *out)
   {
-    for (unsigned int v = 0; v < 3; ++v)
-      for (unsigned int d = 0; d < 2; ++d)
-        out[2 * v + d] = cell->vertex(v)[d];
-    cell->get_dof_values(coarse.locally_relevant_solution, nodal);
-    std::copy(nodal.begin(), nodal.end(), out + 6);
-    cell->get_dof_values(coarse.locally_relevant_void, nodal);
-    std::copy(nodal.begin(), nodal.end(), out + 6 + n);
-  };
+    // the slot of the cell's mean vertex radius and its centre's angle (the norm of the vertex
+    // mean falls below the cell when the cells span large angles: 8 % inside at 8 cells around)
+    double r = 0;
+    for (const unsigned int v : cell->vertex_indices())
+      r += 0.25 * cell->vertex(v).norm();
+    const std::size_t k = angular_index(angle(cell->center())) * nr + radial_index(r);
+    if (cells[k].state() == IteratorState::valid)
+      return false; // two cells in one slot: not a polar tensor grid
+    cells[k] = cell;
+  }
+  const FiniteElement<2> &fe = *coarse.fe;
+  Vector<double> p_nodal(fe.n_dofs_per_cell()), v_nodal(fe.n_dofs_per_cell());
   pressure.resize(points.size());
   void_fraction.resize(points.size());
-  // (r, theta) of a vertex, theta unwrapped next to `near`
+  // (r, theta) of vertex k of a cell, theta unwrapped next to `near`
   auto polar = [&](const Point<2> &x, const double near)
   {
     double t = angle(x);
     t += 2 * M_PI * std::round((near - t) / (2 * M_PI));
     return Tensor<1, 2>({x.norm(), t});
   };
-  auto evaluate = [&](const std::size_t q, const double *data)
+  for (std::size_t q = 0; q < points.size(); ++q)
   {
     const double r = std::clamp(points[q].norm(), ri, ro), t = angle(points[q]);
+    const auto &cell = cells[angular_index(t) * nr + radial_index(r)];
     // the polar rectangle P(xi, eta) = P0 + xi (P1 - P0) + eta (P2 - P0) of vertices 0, 1, 2
-    const Tensor<1, 2> P0 = polar(Point<2>(data[0], data[1]), t),
-                       P1 = polar(Point<2>(data[2], data[3]), t),
-                       P2 = polar(Point<2>(data[4], data[5]), t), P = Tensor<1, 2>({r, t});
+    const Tensor<1, 2> P0 = polar(cell->vertex(0), t), P1 = polar(cell->vertex(1), t),
+                       P2 = polar(cell->vertex(2), t), P = Tensor<1, 2>({r, t});
     const Tensor<1, 2> e1 = P1 - P0, e2 = P2 - P0, d = P - P0;
     const double det = e1[0] * e2[1] - e1[1] * e2[0];
     const Point<2> unit(std::clamp((d[0] * e2[1] - d[1] * e2[0]) / det, 0.0, 1.0),
                         std::clamp((e1[0] * d[1] - e1[1] * d[0]) / det, 0.0, 1.0));
+    cell->get_dof_values(coarse.locally_relevant_solution, p_nodal);
+    cell->get_dof_values(coarse.locally_relevant_void, v_nodal);
     double p = 0, v = 0;
-    for (unsigned int k = 0; k < n; ++k)
+    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
     {
       const double phi = fe.shape_value(k, unit);
-      p += data[6 + k] * phi;
-      v += data[6 + n + k] * phi;
+      p += p_nodal[k] * phi;
+      v += v_nodal[k] * phi;
     }
     pressure[q] = p;
     void_fraction[q] = v;
-  };
-  auto slot_of = [&](const Point<2> &x) {
-    return angular_index(angle(x)) * std::size_t(nr) + radial_index(std::clamp(x.norm(), ri, ro));
-  };
-  std::vector<double> data(record);
-  std::vector<std::size_t> missing; // points whose cell this rank does not hold
-  for (std::size_t q = 0; q < points.size(); ++q)
-  {
-    const auto &cell = cells[slot_of(points[q])];
-    if (cell.state() != IteratorState::valid)
-    {
-      missing.push_back(q);
-      continue;
-    }
-    cell_record(cell, data.data());
-    evaluate(q, data.data());
   }
-  if (n_ranks == 1 || Utilities::MPI::sum<unsigned long long>(missing.size(), comm) == 0)
-    return true;
-  // the cells of the missing points from their owners: every rank learns all requests and
-  // answers those for the cells it owns
-  std::vector<unsigned long long> wanted;
-  for (const std::size_t q : missing)
-    wanted.push_back(slot_of(points[q]));
-  std::sort(wanted.begin(), wanted.end());
-  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
-  const auto requests = Utilities::MPI::all_gather(comm, wanted);
-  std::map<unsigned int, std::vector<double>> answers;
-  for (unsigned int rank = 0; rank < n_ranks; ++rank)
-    for (const auto k : requests[rank])
-      if (cells[k].state() == IteratorState::valid && cells[k]->is_locally_owned())
-      {
-        auto &out = answers[rank];
-        out.push_back(k);
-        out.resize(out.size() + record);
-        cell_record(cells[k], out.data() + out.size() - record);
-      }
-  std::map<std::size_t, std::vector<double>> received;
-  for (const auto &[rank, values] : Utilities::MPI::some_to_some(comm, answers))
-    for (std::size_t i = 0; i + record < values.size(); i += record + 1)
-      received[std::size_t(values[i])].assign(values.begin() + i + 1,
-                                              values.begin() + i + 1 + record);
-  for (const std::size_t q : missing)
-    evaluate(q, received.at(slot_of(points[q])).data());
   return true;
 }
 
