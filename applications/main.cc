@@ -9,6 +9,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cstdlib>
+#include <string>
 
 namespace
 {
@@ -16,10 +17,22 @@ namespace
 /// would still start its UCX transport and probe the node for peers, which costs ~0.25 s of a
 /// ~0.5 s small run (doc/performance.md). Ask for the shared-memory-free, isolated singleton
 /// instead; a setting the user made in the environment wins (setenv does not overwrite).
-void choose_single_rank_transport()
+/// Under Open MPI's mpirun with every rank on this node (OMPI_COMM_WORLD_LOCAL_SIZE equal to
+/// OMPI_COMM_WORLD_SIZE) the ranks talk through shared memory, by the ob1 layer, which Open MPI
+/// picks only after opening the cm layer and its PSM/PSM2 (Omni-Path) transports: ~0.2 s per run
+/// (`mpirun -np 2` of a bare MPI_Init program: 0.41-0.49 s, with ob1 asked for 0.22-0.27 s;
+/// doc/performance.md "Two ranks, session 10"). Across nodes the choice is left to Open MPI.
+void choose_transport()
 {
-  for (const char *launcher_variable :
-       {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "SLURM_PROCID"})
+  const char *size = std::getenv("OMPI_COMM_WORLD_SIZE"),
+             *local_size = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  if (size != nullptr)
+  {
+    if (local_size != nullptr && std::string(size) == local_size)
+      setenv("OMPI_MCA_pml", "ob1", 0);
+    return;
+  }
+  for (const char *launcher_variable : {"PMIX_RANK", "PMI_RANK", "PMI_SIZE", "SLURM_PROCID"})
     if (std::getenv(launcher_variable) != nullptr)
       return;
   setenv("OMPI_MCA_pml", "ob1", 0);
@@ -30,7 +43,7 @@ void choose_single_rank_transport()
 
 int main(int argc, char **argv)
 {
-  choose_single_rank_transport();
+  choose_transport();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace sealfe::applications;
   return run_command_line(argc, argv,

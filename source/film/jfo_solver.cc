@@ -446,8 +446,18 @@ bool JFOSolver::coarse_start()
 {
   // The coarse level solves the same physics: a copy of the whole settings (flow factors and
   // contact included) and the same test hooks. Kept in the solver, so that its mesh is reused.
+  // Several ranks on the built-in mesh: every rank solves the coarse levels whole by itself
+  // (MPI_COMM_SELF), as one rank would, instead of all ranks together. They are small (a quarter
+  // of this level and less) but need many direct factorisations, which on 2 ranks took 7x the
+  // one-rank time (44 against 6 s at 1.05e6 dofs, doc/performance.md "Two ranks, session 10");
+  // each rank then holds the whole coarse solution, and its start values are those of one rank.
+  // Meshes from files stay distributed (each rank would read, or generate, the file again).
+  const bool whole_on_each_rank = Utilities::MPI::n_mpi_processes(s.mpi_communicator) > 1 &&
+                                  s.settings.mesh.mesh_file.empty() &&
+                                  !(s.settings.mesh.mesh_size > 0);
   if (!s.coarse_solver)
-    s.coarse_solver = std::make_unique<ReynoldsSolver>(s.settings, s.mpi_communicator);
+    s.coarse_solver = std::make_unique<ReynoldsSolver>(
+        s.settings, whole_on_each_rank ? MPI_COMM_SELF : s.mpi_communicator);
   ReynoldsSolver &coarse = *s.coarse_solver;
   coarse.settings = s.settings;
   coarse.boundary_pressure = s.boundary_pressure;
@@ -534,7 +544,9 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
                                      std::vector<double> &void_fraction) const
 {
   const ReynoldsSolver &coarse = *s.coarse_solver;
-  if (!s.settings.mesh.mesh_file.empty() || Utilities::MPI::n_mpi_processes(s.mpi_communicator) > 1)
+  // the coarse mesh whole on this rank (one rank, or coarse_start's levels on each rank)
+  if (!s.settings.mesh.mesh_file.empty() ||
+      Utilities::MPI::n_mpi_processes(coarse.mpi_communicator) > 1)
     return false;
   // The built-in mesh is a tensor grid in (r, theta): radial nodes (graded) and nt equal angles.
   // Its cells are found from a point's polar coordinates; the reference coordinates inside the
@@ -570,8 +582,12 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
   std::vector<DoFHandler<2>::active_cell_iterator> cells(nr * nt);
   for (const auto &cell : coarse.dof_handler.active_cell_iterators())
   {
-    const Point<2> c = cell->center();
-    const std::size_t k = angular_index(angle(c)) * nr + radial_index(c.norm());
+    // the slot of the cell's mean vertex radius and its centre's angle (the norm of the vertex
+    // mean falls below the cell when the cells span large angles: 8 % inside at 8 cells around)
+    double r = 0;
+    for (const unsigned int v : cell->vertex_indices())
+      r += 0.25 * cell->vertex(v).norm();
+    const std::size_t k = angular_index(angle(cell->center())) * nr + radial_index(r);
     if (cells[k].state() == IteratorState::valid)
       return false; // two cells in one slot: not a polar tensor grid
     cells[k] = cell;

@@ -52,8 +52,9 @@ private:
   /// settings); false if it fails or its mesh does not cover this one.
   bool coarse_start();
   /// The coarse level's nodal pressure and void fraction at `points` when both meshes are the
-  /// built-in polar grid on one rank: cells found by (r, theta), no point search. Returns false
-  /// (and leaves the outputs undefined) for any other mesh.
+  /// built-in polar grid and the coarse level is whole on this rank (one rank, or the coarse
+  /// levels each rank solves by itself): cells found by (r, theta), no point search. Returns
+  /// false (and leaves the outputs undefined) otherwise.
   bool values_on_polar_grid(const std::vector<dealii::Point<2>> &points,
                             std::vector<double> &pressure,
                             std::vector<double> &void_fraction) const;
