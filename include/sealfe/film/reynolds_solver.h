@@ -201,6 +201,13 @@ private:
       const bool with_void, dealii::FullMatrix<double> &A, dealii::FullMatrix<double> &G,
       dealii::Vector<double> &F,
       const std::function<void(unsigned int, const LocalFilm &)> &at_point = {}) const;
+  /// cell_film_matrices on values already reinitialised on `cell` (FEValues, or the turned
+  /// values of a polar row, PolarCellValues: defined and instantiated in reynolds_solver.cc).
+  template <class Values>
+  void film_matrices(Values &values, const dealii::DoFHandler<2>::active_cell_iterator &cell,
+                     const bool with_void, dealii::FullMatrix<double> &A,
+                     dealii::FullMatrix<double> &G, dealii::Vector<double> &F,
+                     const std::function<void(unsigned int, const LocalFilm &)> &at_point) const;
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
   FilmLoads compute_loads() const;
 
