@@ -196,7 +196,7 @@ void ReynoldsSolver::assemble_system()
   // axis, so its geometry comes from one FEValues evaluation per row (PolarCellValues; a cell
   // that is not such a rotation takes FEValues).
   std::optional<PolarCellValues> polar;
-  if (mesh_parameters.mesh_file.empty())
+  if (mesh_parameters.mesh_file.empty() && polar_rows)
     polar.emplace(*mapping, *fe, quadrature);
   std::function<void(unsigned int, const LocalFilm &)> at_point, at_polar_point;
   if (gather)

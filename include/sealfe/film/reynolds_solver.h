@@ -157,6 +157,9 @@ public:
   /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
   std::function<double(const dealii::Point<2> &)> boundary_pressure;
   std::function<double(const dealii::Point<2> &)> source;
+  /// The assembly on the built-in annulus takes each cell's geometry from its radial row
+  /// (PolarCellValues); false: FEValues on every cell (tests compare the two).
+  bool polar_rows = true;
 
   /// Everything the solve depends on. Changing it between runs is allowed; the mesh is rebuilt
   /// only when the discretisation changes.
