@@ -1,4 +1,5 @@
 #include <sealfe/film/film_loads.h>
+#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/surface_features.h>
 
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace sealfe
 {
@@ -154,8 +156,8 @@ void AffineLoadSums::add_cell(const std::vector<unsigned int> &relevant_index)
     }
 }
 
-template <typename Film>
-void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const FEValues<2> &fe_values,
+template <typename Values, typename Film>
+void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const Values &fe_values,
                                       const unsigned int q, const Film &f) const
 {
   // The sums at p = p_ref (uniform: zero gradient) by the same point functions as integrate(),
@@ -182,17 +184,30 @@ void LoadIntegrator::add_affine_point(AffineLoadSums &sums, const FEValues<2> &f
       friction_face() * JxW;
   const unsigned int n = fe_values.get_fe().n_dofs_per_cell();
   double *cell_weight = sums.cell_weight.data();
+  // r e_theta . grad phi is the same in the frame of a polar row's first cell (PolarCellValues:
+  // its gradients need not be turned)
+  constexpr bool polar = std::is_same_v<Values, PolarCellValues>;
+  Point<2> xg = x.x;
+  if constexpr (polar)
+    xg = fe_values.reference_point(q);
   for (unsigned int i = 0; i < n; ++i, cell_weight += AffineLoadSums::n_linear)
   {
     const double phi = fe_values.shape_value(i, q);
     for (unsigned int m = 0; m < 5; ++m)
       cell_weight[m] += w[m] * phi;
-    const Tensor<1, 2> g = fe_values.shape_grad(i, q);
-    cell_weight[5] += friction * (-Y * g[0] + X * g[1]);
+    Tensor<1, 2> g;
+    if constexpr (polar)
+      g = fe_values.reference_shape_grad(i, q);
+    else
+      g = fe_values.shape_grad(i, q);
+    cell_weight[5] += friction * (-xg[1] * g[0] + xg[0] * g[1]);
   }
 }
-template void LoadIntegrator::add_affine_point<ReynoldsSolver::LocalFilm>(
+template void LoadIntegrator::add_affine_point<FEValues<2>, ReynoldsSolver::LocalFilm>(
     AffineLoadSums &, const FEValues<2> &, unsigned int, const ReynoldsSolver::LocalFilm &) const;
+template void LoadIntegrator::add_affine_point<PolarCellValues, ReynoldsSolver::LocalFilm>(
+    AffineLoadSums &, const PolarCellValues &, unsigned int,
+    const ReynoldsSolver::LocalFilm &) const;
 
 std::vector<bool> LoadIntegrator::leakage_cells() const
 {

@@ -1,5 +1,6 @@
 #include <sealfe/film/film_multigrid.h>
 #include <sealfe/film/lap_timer.h>
+#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/mg_level_object.h>
@@ -708,8 +709,24 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
                         update_gradients | update_quadrature_points | update_JxW_values);
   FullMatrix<double> cell_matrix(n, n);
   std::vector<types::global_dof_index> dofs(n);
-  std::vector<Tensor<2, 2>> k_q(quadrature.size());
   std::vector<Tensor<1, 2>> k_grad(n);
+  // K grad phi_j . grad phi_i JxW summed over the points, from either kind of values
+  auto add_point = [&](const auto &values, const unsigned int q, const Tensor<2, 2> &Kq)
+  {
+    const Tensor<2, 2> KJ = Kq * values.JxW(q);
+    for (unsigned int j = 0; j < n; ++j)
+      k_grad[j] = KJ * values.shape_grad(j, q);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const Tensor<1, 2> gi = values.shape_grad(i, q);
+      for (unsigned int j = 0; j < n; ++j)
+        cell_matrix(i, j) += gi * k_grad[j];
+    }
+  };
+  // Every level is a polar grid: the cells of a radial row are one cell turned (as in the
+  // assembly of the system, ReynoldsSolver::assemble_system), and an isotropic K = k I needs
+  // only the products of the gradients, the same on the whole row.
+  PolarCellValues polar(*mapping, fe, quadrature);
   for (unsigned int l = 0; l < n_levels; ++l)
   {
     if (l == fine && data->fine_is_system)
@@ -719,19 +736,26 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     for (const auto &cell : dof_handler->mg_cell_iterators_on_level(l))
       if (cell->level_subdomain_id() == tria.locally_owned_subdomain())
       {
-        fe_values.reinit(cell);
         cell_matrix = 0;
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-        {
-          const Tensor<2, 2> Kq = K(fe_values.quadrature_point(q)) * fe_values.JxW(q);
-          for (unsigned int j = 0; j < n; ++j)
-            k_grad[j] = Kq * fe_values.shape_grad(j, q);
-          for (unsigned int i = 0; i < n; ++i)
+        if (polar.reinit(cell))
+          for (const unsigned int q : polar.quadrature_point_indices())
           {
-            const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
-            for (unsigned int j = 0; j < n; ++j)
-              cell_matrix(i, j) += gi * k_grad[j];
+            const Tensor<2, 2> Kq = K(polar.quadrature_point(q));
+            if (Kq[0][1] == 0 && Kq[1][0] == 0 && Kq[0][0] == Kq[1][1])
+            {
+              const double k = Kq[0][0], *gram = polar.gram(q);
+              double *a = &cell_matrix(0, 0);
+              for (unsigned int ij = 0; ij < n * n; ++ij)
+                a[ij] += k * gram[ij];
+            }
+            else
+              add_point(polar, q, Kq);
           }
+        else
+        {
+          fe_values.reinit(cell);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            add_point(fe_values, q, K(fe_values.quadrature_point(q)));
         }
         cell->get_mg_dof_indices(dofs);
         data->level_constraints[l].distribute_local_to_global(cell_matrix, dofs, matrix);

@@ -1,6 +1,7 @@
 #include <sealfe/film/film_output.h>
 #include <sealfe/film/jfo_solver.h>
 #include <sealfe/film/lap_timer.h>
+#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/round_off.h>
@@ -30,8 +31,10 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace sealfe
 {
@@ -189,10 +192,20 @@ void ReynoldsSolver::assemble_system()
   const bool gather = load_integrator.affine_applies();
   affine_loads.reset(gather, locally_relevant_dofs.n_elements(), dofs_per_cell);
   std::vector<unsigned int> relevant_index(dofs_per_cell);
-  std::function<void(unsigned int, const LocalFilm &)> at_point;
+  // The built-in annulus: every cell of a radial row is the row's first cell turned about the
+  // axis, so its geometry comes from one FEValues evaluation per row (PolarCellValues; a cell
+  // that is not such a rotation takes FEValues).
+  std::optional<PolarCellValues> polar;
+  if (mesh_parameters.mesh_file.empty() && polar_rows)
+    polar.emplace(*mapping, *fe, quadrature);
+  std::function<void(unsigned int, const LocalFilm &)> at_point, at_polar_point;
   if (gather)
+  {
     at_point = [&](const unsigned int q, const LocalFilm &f)
     { load_integrator.add_affine_point(affine_loads, fe_values, q, f); };
+    at_polar_point = [&](const unsigned int q, const LocalFilm &f)
+    { load_integrator.add_affine_point(affine_loads, *polar, q, f); };
+  }
 
   try
   {
@@ -204,7 +217,10 @@ void ReynoldsSolver::assemble_system()
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
         // the full-film pressure matrix and Couette + squeeze right-hand side
-        cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
+        if (polar && polar->reinit(cell))
+          film_matrices(*polar, cell, false, cell_matrix, unused, cell_rhs, at_polar_point);
+        else
+          cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
         if (gather)
           affine_loads.add_cell(relevant_index);
         constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
@@ -426,11 +442,21 @@ void ReynoldsSolver::cell_film_matrices(
     FullMatrix<double> &A, FullMatrix<double> &G, Vector<double> &F,
     const std::function<void(unsigned int, const LocalFilm &)> &at_point) const
 {
+  fe_values.reinit(cell);
+  film_matrices(fe_values, cell, with_void, A, G, F, at_point);
+}
+
+template <class Values>
+void ReynoldsSolver::film_matrices(
+    Values &fe_values, const DoFHandler<2>::active_cell_iterator &cell, const bool with_void,
+    FullMatrix<double> &A, FullMatrix<double> &G, Vector<double> &F,
+    const std::function<void(unsigned int, const LocalFilm &)> &at_point) const
+{
   // A: pressure flow, F: full-film Couette + squeeze, G: void-fraction terms (see above). All
   // scaled by 12 mu / C0^3 like the full-film system.
+  constexpr bool polar = std::is_same_v<Values, PolarCellValues>;
   const unsigned int n = fe->n_dofs_per_cell();
   const double tau = with_void ? streamline_tau(cell) : 0.0;
-  fe_values.reinit(cell);
   A = 0;
   G = 0;
   F = 0;
@@ -443,6 +469,24 @@ void ReynoldsSolver::cell_film_matrices(
       at_point(q, f);
     const Tensor<2, 2> K = equation_scale * f.K;
     const double JxW = fe_values.JxW(q);
+    if constexpr (polar)
+      if (!with_void && K[0][1] == 0 && K[1][0] == 0 && K[0][0] == K[1][1])
+      {
+        // isotropic K = k I (smooth faces): k (grad phi_i . grad phi_j) JxW, the products of
+        // the gradients being the same on every cell of the row; and the Couette flux turned
+        // into the row's first cell instead of the gradients into this one
+        const double k = K[0][0], *gram = fe_values.gram(q);
+        double *a = &A(0, 0);
+        for (unsigned int ij = 0; ij < n * n; ++ij)
+          a[ij] += k * gram[ij];
+        const Tensor<1, 2> c = fe_values.to_reference(f.c);
+        for (unsigned int i = 0; i < n; ++i)
+          F(i) +=
+              equation_scale *
+              (c * fe_values.reference_shape_grad(i, q) - f.squeeze * fe_values.shape_value(i, q)) *
+              JxW;
+        continue;
+      }
     for (unsigned int j = 0; j < n; ++j)
       K_grad[j] = K * fe_values.shape_grad(j, q);
     for (unsigned int i = 0; i < n; ++i)
@@ -466,6 +510,14 @@ void ReynoldsSolver::cell_film_matrices(
     }
   }
 }
+template void ReynoldsSolver::film_matrices<FEValues<2>>(
+    FEValues<2> &, const DoFHandler<2>::active_cell_iterator &, const bool, FullMatrix<double> &,
+    FullMatrix<double> &, Vector<double> &,
+    const std::function<void(unsigned int, const LocalFilm &)> &) const;
+template void ReynoldsSolver::film_matrices<PolarCellValues>(
+    PolarCellValues &, const DoFHandler<2>::active_cell_iterator &, const bool,
+    FullMatrix<double> &, FullMatrix<double> &, Vector<double> &,
+    const std::function<void(unsigned int, const LocalFilm &)> &) const;
 
 void ReynoldsSolver::solve_cavitation()
 {

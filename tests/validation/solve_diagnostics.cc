@@ -116,10 +116,15 @@ TEST(MassBalance, ResidualIsRelativeToAFlowThatDoesNotVanish)
   const SolveRun r = solve("balance", 1.2e-3, 1000,
                            "subsection Operating conditions\n  set Inner pressure = 4e5\nend\n");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_LT(std::abs(r.summary["leakage_inner"].get<double>()), 1e-20);
   // Couette flow through the dam: (w/2) C0 (ro^2 - ri^2) / 2
-  EXPECT_NEAR(r.summary["mass_balance_flow_scale"].get<double>(),
-              0.25 * 1000 * C0 * (ro * ro - ri * ri), 1e-9 * 1000 * C0 * ro * ro);
+  const double couette = 0.25 * 1000 * C0 * (ro * ro - ri * ri);
+  // The leakage is round-off of the boundary fluxes: the assembly takes the cell geometry from
+  // its radial row (PolarCellValues), the leakage residual from FEValues; the two differ by up
+  // to ~100 u ro / h_r ~ 3e-12 relative on this mesh (tests/validation/polar_cell_values.cc),
+  // so the residual of the solved p carries that fraction of the Couette flux: 1e-11 of it.
+  EXPECT_LT(std::abs(r.summary["leakage_inner"].get<double>()), 1e-11 * couette);
+  EXPECT_NEAR(r.summary["mass_balance_flow_scale"].get<double>(), couette,
+              1e-9 * 1000 * C0 * ro * ro);
   EXPECT_LT(r.summary["mass_balance_residual"].get<double>(), 1e-9);
 }
 

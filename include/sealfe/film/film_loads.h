@@ -104,8 +104,9 @@ public:
   bool uses_assembled_sums() const;
   /// One quadrature point of the assembly (the film f there) into `sums` (the weights into
   /// its cell_weight).
-  template <typename Film>
-  void add_affine_point(AffineLoadSums &sums, const dealii::FEValues<2> &fe_values, unsigned int q,
+  /// `Values`: FEValues<2> or PolarCellValues.
+  template <typename Values, typename Film>
+  void add_affine_point(AffineLoadSums &sums, const Values &fe_values, unsigned int q,
                         const Film &f) const;
   /// Derivatives of every load along each perturbation: the Reynolds system linearised about the
   /// solved state, one solve each with the solver's factorisation.

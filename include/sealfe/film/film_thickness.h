@@ -52,24 +52,30 @@ public:
   /// and the time derivative of the film expression.
   double d_dt(const double r, const double theta) const
   {
-    const double d =
-        axial_velocity + tilt_rate_x * r * std::sin(theta) - tilt_rate_y * r * std::cos(theta);
+    // terms with a zero factor are skipped (the same value, without their sines and cosines:
+    // the assembly evaluates the film at every quadrature point)
+    const double d = tilt_rate_x == 0 && tilt_rate_y == 0
+                         ? axial_velocity
+                         : axial_velocity + tilt_rate_x * r * std::sin(theta) -
+                               tilt_rate_y * r * std::cos(theta);
     return expression ? d + expression_d_dt(r, theta) : d;
   }
 
   /// The film without expression and features (coning, tilt, waviness).
   double analytic_value(const double r, const double theta) const
   {
-    return clearance + axial_offset + coning * (r - inner_radius) +
-           tilt * r * std::cos(theta - tilt_angle) +
-           wave_amplitude * std::cos(wave_number * (theta - wave_phase));
+    const double h = clearance + axial_offset + coning * (r - inner_radius) +
+                     tilt * r * std::cos(theta - tilt_angle);
+    return wave_amplitude == 0 ? h
+                               : h + wave_amplitude * std::cos(wave_number * (theta - wave_phase));
   }
   /// dh/dtheta of the part of the film fixed in the frame of the solve (analytic + expression),
   /// the part that moves relative to the features' frame (reynolds_solver.cc, local_film).
   double fixed_d_dtheta(const double r, const double theta) const
   {
-    const double d = -tilt * r * std::sin(theta - tilt_angle) -
-                     wave_amplitude * wave_number * std::sin(wave_number * (theta - wave_phase));
+    double d = -tilt * r * std::sin(theta - tilt_angle);
+    if (wave_amplitude != 0)
+      d -= wave_amplitude * wave_number * std::sin(wave_number * (theta - wave_phase));
     return expression ? d + expression_d_dtheta(r, theta) : d;
   }
   bool has_added_terms() const { return expression || features; }

@@ -157,6 +157,9 @@ public:
   /// source f (m/s) on the right-hand side. Empty means the physical pi/po and no source.
   std::function<double(const dealii::Point<2> &)> boundary_pressure;
   std::function<double(const dealii::Point<2> &)> source;
+  /// The assembly on the built-in annulus takes each cell's geometry from its radial row
+  /// (PolarCellValues); false: FEValues on every cell (tests compare the two).
+  bool polar_rows = true;
 
   /// Everything the solve depends on. Changing it between runs is allowed; the mesh is rebuilt
   /// only when the discretisation changes.
@@ -201,6 +204,13 @@ private:
       const bool with_void, dealii::FullMatrix<double> &A, dealii::FullMatrix<double> &G,
       dealii::Vector<double> &F,
       const std::function<void(unsigned int, const LocalFilm &)> &at_point = {}) const;
+  /// cell_film_matrices on values already reinitialised on `cell` (FEValues, or the turned
+  /// values of a polar row, PolarCellValues: defined and instantiated in reynolds_solver.cc).
+  template <class Values>
+  void film_matrices(Values &values, const dealii::DoFHandler<2>::active_cell_iterator &cell,
+                     const bool with_void, dealii::FullMatrix<double> &A,
+                     dealii::FullMatrix<double> &G, dealii::Vector<double> &F,
+                     const std::function<void(unsigned int, const LocalFilm &)> &at_point) const;
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
   FilmLoads compute_loads() const;
 

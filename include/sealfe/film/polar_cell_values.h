@@ -1,0 +1,102 @@
+// PolarCellValues: the values FEValues gives on a cell of the built-in polar annulus, from one
+// FEValues evaluation per radial row (every cell of a row is a rotation of the row's first cell).
+#pragma once
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/std_cxx20/iota_view.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/fe.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/grid/tria.h>
+
+#include <array>
+#include <map>
+#include <vector>
+
+namespace sealfe
+{
+/// On the built-in annulus (vertices on circles, angles 2 pi j / N_theta with a shift that
+/// depends on r only, the polar manifold everywhere) all cells of one radial row are the same cell
+/// turned about the axis by a multiple of 2 pi / N_theta: their Jacobians, JxW and the shape
+/// gradients turned back are the same. reinit() finds the row of a cell (by its vertex radii and
+/// angular width), evaluates FEValues once on the first cell of each row, and gives the cell's
+/// values by turning the row's points and gradients (a 2 x 2 rotation instead of a mapping and
+/// gradient transformation per cell). A cell that is not such a rotation (checked on its four
+/// vertices) is refused: the caller uses FEValues for it. Equal to FEValues to round-off
+/// (tests/validation/polar_cell_values.cc).
+class PolarCellValues
+{
+public:
+  PolarCellValues(const dealii::Mapping<2> &mapping, const dealii::FiniteElement<2> &fe,
+                  const dealii::Quadrature<2> &quadrature);
+
+  /// The values of `cell`; false (values undefined) if it is not a rotation of its row's first
+  /// cell about the origin.
+  bool reinit(const dealii::Triangulation<2>::cell_iterator &cell);
+
+  unsigned int n_quadrature_points() const { return n_q; }
+  dealii::std_cxx20::ranges::iota_view<unsigned int, unsigned int> quadrature_point_indices() const
+  {
+    return {0U, n_q};
+  }
+  const dealii::FiniteElement<2> &get_fe() const { return *fe; }
+  const dealii::Point<2> &quadrature_point(const unsigned int q) const { return points[q]; }
+  double JxW(const unsigned int q) const { return row->JxW[q]; }
+  double shape_value(const unsigned int i, const unsigned int q) const
+  {
+    return values[std::size_t(q) * n + i];
+  }
+  /// The gradient of shape function i at point q (turned on the first call after reinit).
+  const dealii::Tensor<1, 2> &shape_grad(const unsigned int i, const unsigned int q) const
+  {
+    if (!grads_turned)
+      turn_gradients();
+    return grads[std::size_t(q) * n + i];
+  }
+
+  /// The same in the frame of the row's first cell (the cell turned back by its angle): points,
+  /// gradients, and a vector of this cell's frame turned into it. Products of two vectors are
+  /// the same in either frame.
+  const dealii::Point<2> &reference_point(const unsigned int q) const { return row->points[q]; }
+  const dealii::Tensor<1, 2> &reference_shape_grad(const unsigned int i, const unsigned int q) const
+  {
+    return row->grads[std::size_t(q) * n + i];
+  }
+  dealii::Tensor<1, 2> to_reference(const dealii::Tensor<1, 2> &v) const
+  {
+    return dealii::Tensor<1, 2>({c * v[0] + s * v[1], -s * v[0] + c * v[1]});
+  }
+  /// (grad phi_i . grad phi_j) JxW at point q, [i n + j]: the same for every cell of the row
+  /// (what an isotropic K needs).
+  const double *gram(const unsigned int q) const { return &row->gram[std::size_t(q) * n * n]; }
+
+  /// Cells given by rotation and rows evaluated by FEValues since construction.
+  unsigned int n_turned() const { return turned; }
+  unsigned int n_rows() const { return rows.size(); }
+
+private:
+  struct Row
+  {
+    std::array<dealii::Point<2>, 4> vertices;
+    std::vector<dealii::Point<2>> points;
+    std::vector<double> JxW;
+    std::vector<dealii::Tensor<1, 2>> grads; // [q n + i]
+    std::vector<double> gram;                // [(q n + i) n + j]
+  };
+  void turn_gradients() const;
+
+  const dealii::Mapping<2> *mapping;
+  const dealii::FiniteElement<2> *fe;
+  dealii::Quadrature<2> quadrature;
+  unsigned int n, n_q;
+  std::vector<double> values; // [q n + i], the same on every cell (FE_Q)
+  std::map<std::array<long long, 3>, Row> rows;
+  const Row *row = nullptr;
+  double c = 1, s = 0; // cos, sin of the angle from the row's first cell to this one
+  std::vector<dealii::Point<2>> points;
+  mutable std::vector<dealii::Tensor<1, 2>> grads;
+  mutable bool grads_turned = false;
+  unsigned int turned = 0;
+};
+} // namespace sealfe

@@ -1,0 +1,143 @@
+// The assembly on the built-in annulus takes the geometry of each cell from its radial row
+// (PolarCellValues: every cell of a row is the row's first cell turned about the axis by a
+// multiple of 2 pi / N_theta). That is an identity of the mesh (vertices on circles at the angles
+// 2 pi j / N_theta, polar manifold), so the turned values must equal FEValues on every cell, and
+// the solve assembled with them the solve assembled with FEValues, to round-off. Tolerances:
+// the vertices and the mapping's support points carry round-off u r (u = 1.1e-16, r <= ro); the
+// mapping differentiates them across a cell, so its Jacobian, JxW and the shape gradients carry
+// u ro / h_r relative (h_r the smallest radial cell width), times the weights of the derivatives
+// of the degree-k Lagrange polynomials and the inverse Jacobian of cells up to ~45 times longer
+// than wide: observed up to ~100 u ro / h_r (k = 3), bounded here by 1000 u ro / h_r. The loads
+// of a direct (KLU) solve move with the matrix entries by at most the condition number (~1e5 on
+// these meshes) times their round-off.
+#include <sealfe/film/annulus_mesh.h>
+#include <sealfe/film/polar_cell_values.h>
+#include <sealfe/film/reynolds_solver.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_cache.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace sealfe;
+using namespace dealii;
+
+TEST(PolarCellValues, EqualFEValuesOnEveryCellOfEveryLevel)
+{
+  const double ri = 0.0355, ro = 0.0408;
+  for (const unsigned int degree : {1u, 2u, 3u})
+  {
+    AnnulusMesh m;
+    m.radial_cells = 8;
+    m.circumferential_cells = 64; // refined from 1 x 16 cells: 4 levels
+    m.grading_clearance = 1e-6;
+    m.grading_coning = 1e-3;
+    parallel::distributed::Triangulation<2> tria(
+        MPI_COMM_WORLD, Triangulation<2>::limit_level_difference_at_vertices,
+        parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
+    m.create(tria, ri, ro, 0);
+    const FE_Q<2> fe(degree);
+    MappingQCache<2> mapping(degree);
+    mapping.initialize(MappingQ<2>(degree), tria);
+    const QGauss<2> quadrature(degree + 2);
+    FEValues<2> fe_values(mapping, fe, quadrature,
+                          update_values | update_gradients | update_quadrature_points |
+                              update_JxW_values);
+    PolarCellValues polar(mapping, fe, quadrature);
+    const unsigned int n = fe.n_dofs_per_cell();
+    double h_r = ro;
+    for (const auto &cell : tria.active_cell_iterators())
+      h_r = std::min(h_r, cell->vertex(1).norm() - cell->vertex(0).norm());
+    const double tol = 1000 * 1.1e-16 * ro / h_r;
+    double worst_x = 0, worst_jxw = 0, worst_grad = 0, worst_gram = 0, worst_value = 0;
+    unsigned int cells = 0;
+    for (unsigned int l = 0; l < tria.n_global_levels(); ++l)
+      for (const auto &cell : tria.cell_iterators_on_level(l))
+      {
+        ++cells;
+        ASSERT_TRUE(polar.reinit(cell)) << "degree " << degree << ", level " << l;
+        fe_values.reinit(cell);
+        double grad_scale = 0, jxw_scale = 0;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          jxw_scale = std::max(jxw_scale, fe_values.JxW(q));
+          for (unsigned int i = 0; i < n; ++i)
+            grad_scale = std::max(grad_scale, fe_values.shape_grad(i, q).norm());
+        }
+        const double gram_scale = grad_scale * grad_scale * jxw_scale;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          worst_x = std::max(
+              worst_x, fe_values.quadrature_point(q).distance(polar.quadrature_point(q)) / ro);
+          worst_jxw = std::max(worst_jxw, std::abs(fe_values.JxW(q) - polar.JxW(q)) / jxw_scale);
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            worst_value = std::max(worst_value,
+                                   std::abs(fe_values.shape_value(i, q) - polar.shape_value(i, q)));
+            worst_grad =
+                std::max(worst_grad,
+                         (fe_values.shape_grad(i, q) - polar.shape_grad(i, q)).norm() / grad_scale);
+            for (unsigned int j = 0; j < n; ++j)
+              worst_gram =
+                  std::max(worst_gram, std::abs(fe_values.shape_grad(i, q) *
+                                                    fe_values.shape_grad(j, q) * fe_values.JxW(q) -
+                                                polar.gram(q)[i * n + j]) /
+                                           gram_scale);
+          }
+        }
+      }
+    // every cell but the first of each row given by turning
+    EXPECT_EQ(polar.n_turned() + polar.n_rows(), cells) << "degree " << degree;
+    EXPECT_LT(worst_x, 1e-13) << "degree " << degree;
+    EXPECT_LT(worst_jxw, tol) << "degree " << degree;
+    EXPECT_EQ(worst_value, 0.0) << "degree " << degree; // FE_Q: the same numbers on every cell
+    EXPECT_LT(worst_grad, tol) << "degree " << degree;
+    EXPECT_LT(worst_gram, tol) << "degree " << degree;
+    std::cout << "degree " << degree << ": ro / h_r = " << ro / h_r << ", JxW " << worst_jxw
+              << ", gradients " << worst_grad << ", products " << worst_gram << " (bound " << tol
+              << ")\n";
+  }
+}
+
+TEST(PolarCellValues, SolveEqualsTheFEValuesAssembly)
+{
+  // A tilted, wavy face pair with squeeze (axial and tilt rates): every term of the assembly
+  // (K, Couette flux, squeeze, the loads' weights) varies around the annulus.
+  for (const unsigned int degree : {1u, 2u, 3u})
+  {
+    FilmSettings s;
+    s.geometry.tilt = 0.5 * s.geometry.clearance / s.geometry.outer_radius;
+    s.geometry.tilt_angle = 0.3;
+    s.geometry.wave_amplitude = 0.2e-6;
+    s.geometry.wave_number = 3;
+    s.geometry.axial_velocity = 1e-4;
+    s.geometry.tilt_rate_x = 2e-3;
+    s.polynomial_degree = degree;
+    s.mesh.radial_cells = 8;
+    s.mesh.circumferential_cells = 64;
+    s.estimate_error = false;
+    s.linear_solver = FilmSettings::LinearSolver::direct;
+    ReynoldsSolver turned(s, MPI_COMM_WORLD), plain(s, MPI_COMM_WORLD);
+    plain.polar_rows = false;
+    const FilmLoads a = turned.run(), b = plain.run();
+    ASSERT_TRUE(turned.loads_from_assembled_sums());
+    const double F = std::abs(a.force_z), ro = s.geometry.outer_radius;
+    const double Q = std::abs(a.leakage_outer), T = std::abs(a.friction_torque);
+    const double tol = 1e-10; // condition number ~1e5 times ~1e-15 entry round-off
+    EXPECT_NEAR(a.force_z, b.force_z, tol * F) << "degree " << degree;
+    EXPECT_NEAR(a.moment_x, b.moment_x, tol * F * ro) << "degree " << degree;
+    EXPECT_NEAR(a.moment_y, b.moment_y, tol * F * ro) << "degree " << degree;
+    EXPECT_NEAR(a.leakage_inner, b.leakage_inner, tol * Q) << "degree " << degree;
+    EXPECT_NEAR(a.leakage_outer, b.leakage_outer, tol * Q) << "degree " << degree;
+    EXPECT_NEAR(a.friction_torque, b.friction_torque, tol * T) << "degree " << degree;
+    std::cout << "degree " << degree << ": force_z " << (a.force_z - b.force_z) / F << ", moment_x "
+              << (a.moment_x - b.moment_x) / (F * ro) << ", leakage "
+              << (a.leakage_outer - b.leakage_outer) / Q << " relative\n";
+  }
+}
