@@ -30,10 +30,10 @@ FilmLoads FiniteElementFilm::loads(const FilmState &state) const
 {
   // solved in the features' frame (rotor-borne features at their Phase, where the mesh is aligned
   // with their steps), the stator-frame parts turned by -rotor_angle into it
-  last_frame_angle = state.feature_frame_angle(base.geometry);
-  return state.turned_back(
-      solver.reynolds().run(state.in_feature_frame(base.geometry), state.apply(base.conditions)),
-      base.geometry);
+  const FilmLoads loads =
+      solver.reynolds().run(state.in_feature_frame(base.geometry), state.apply(base.conditions));
+  last_frame_angle = state.feature_frame_angle(base.geometry); // the frame of the stored solution
+  return state.turned_back(loads, base.geometry);
 }
 
 namespace

@@ -131,22 +131,9 @@ class FieldDataOut : public DataOut<2>
 public:
   output::VtuFields fields() const
   {
-    output::VtuFields f;
-    f.names = get_dataset_names();
-    for (const auto &range : get_nonscalar_data_ranges())
-      f.vectors.emplace_back(std::get<0>(range), std::get<1>(range), std::get<2>(range));
-    return f;
+    return output::VtuFields::from(get_dataset_names(), get_nonscalar_data_ranges());
   }
 };
-
-/// `text` with `insertion` put before the first `marker`.
-std::string inserted_before(std::string text, const std::string &marker,
-                            const std::string &insertion)
-{
-  const std::size_t at = text.find(marker);
-  AssertThrow(at != std::string::npos, ExcMessage("no " + marker + " in deal.II's VTK output"));
-  return text.insert(at, insertion);
-}
 
 /// Writes `content` to `name`, with a one-line reason if the file system refuses.
 void write_file(const std::string &name, const std::string &content)
@@ -239,7 +226,7 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   // that were asked for): the Patir & Cheng quantities with rough faces, the contact pressure
   // with asperity contact, the liquid fraction with JFO and the cavity indicator with a
   // cavitation model (elsewhere they are 1, 0 or h everywhere). The owning rank is cell data
-  // (one number per cell), added after the write.
+  // (one number per cell).
   const bool jfo = s.cavitation.model == Cavitation::jfo;
   const bool cavitating = s.cavitation.model != Cavitation::none;
   const bool write_flux = fields.volume_flux;
@@ -282,11 +269,9 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
     if (write_cavitated)
       data_out.add_data_vector(cavitated_ghosted, "cavitated");
   }
-  // one Lagrange cell of the element's degree per cell (VTK_LAGRANGE_QUADRILATERAL): ParaView
-  // shows the curved element and its degree instead of k^2 straight sub-quads
-  DataOutBase::VtkFlags flags;
-  flags.write_higher_order_cells = true;
-  data_out.set_flags(flags);
+  // one patch of the element's degree per cell, written as a Lagrange cell
+  // (VTK_LAGRANGE_QUADRILATERAL): ParaView shows the curved element and its degree instead of
+  // k^2 straight sub-quads
   data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
   // Each rank writes its own piece, LZ4-compressed raw binary (output::write_vtu_piece, several
   // times faster than deal.II's base64 writer), with `rank` as cell data (one value per cell)
@@ -294,13 +279,17 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   const std::string stem = basename + "_" + Utilities::int_to_string(counter, 4);
   auto piece_name = [&stem](const unsigned int r)
   { return stem + "." + std::to_string(r) + ".vtu"; };
+  const output::VtuFields vtu_fields = data_out.fields();
   {
-    std::ofstream piece(directory + "/" + piece_name(rank), std::ios::binary);
-    output::write_vtu_piece(piece, data_out.get_patches(), data_out.fields(),
+    const std::string name = directory + "/" + piece_name(rank);
+    std::ofstream piece(name, std::ios::binary);
+    if (!piece)
+      throw std::runtime_error("cannot write the field file " + name);
+    output::write_vtu_piece(piece, data_out.get_patches(), vtu_fields,
                             {{"rank", std::vector<int>(data_out.get_patches().size(), int(rank))}},
                             frame_angle);
     if (!piece.flush())
-      throw std::runtime_error("cannot write the field file " + directory + "/" + piece_name(rank));
+      throw std::runtime_error("cannot write the field file " + name);
   }
   if (rank == 0)
   {
@@ -308,11 +297,8 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
     for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(s.mpi_communicator); ++r)
       pieces.push_back(piece_name(r));
     std::ostringstream record;
-    data_out.write_pvtu_record(record, pieces);
-    write_file(directory + "/" + stem + ".pvtu",
-               inserted_before(record.str(), "<PPoints>",
-                               "<PCellData>\n      <PDataArray type=\"Int32\" Name=\"rank\" "
-                               "format=\"ascii\"/>\n    </PCellData>\n    "));
+    output::write_pvtu_record(record, vtu_fields, {"rank"}, pieces);
+    write_file(directory + "/" + stem + ".pvtu", record.str());
   }
   // every piece is on disk before the caller publishes the directory
   MPI_Barrier(s.mpi_communicator);

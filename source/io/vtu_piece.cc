@@ -75,6 +75,30 @@ private:
   std::string data;
 };
 
+/// One point array of a piece: its name, its number of components (3 for a 2D vector, padded
+/// with 0), and the first of its data sets. Vectors first, then the scalars, in data-set order:
+/// the order of the piece's arrays and of the .pvtu record's.
+struct PointArray
+{
+  std::string name;
+  unsigned int components, first_set;
+};
+
+std::vector<PointArray> point_arrays(const VtuFields &fields)
+{
+  std::vector<PointArray> arrays;
+  std::vector<bool> in_vector(fields.names.size(), false);
+  for (const auto &[first, name] : fields.vectors)
+  {
+    arrays.push_back({name, 3, first});
+    in_vector.at(first) = in_vector.at(first + 1) = true;
+  }
+  for (unsigned int set = 0; set < fields.names.size(); ++set)
+    if (!in_vector[set])
+      arrays.push_back({fields.names[set], 1, set});
+  return arrays;
+}
+
 std::string data_array(const std::string &type, const std::string &name,
                        const unsigned int components, const std::size_t offset)
 {
@@ -145,33 +169,23 @@ void write_vtu_piece(std::ostream &out,
 
   AppendedData appended;
   std::string point_data, cell_arrays;
-  // vectors first (two data sets padded with a zero third component), then the scalars
-  std::vector<bool> in_vector(n_sets, false);
-  for (const auto &[begin, end, name] : fields.vectors)
+  for (const PointArray &array : point_arrays(fields))
   {
     std::vector<float> values;
-    values.reserve(3 * n_points);
+    values.reserve(array.components * n_points);
+    const unsigned int set = array.first_set;
     for (const auto &patch : patches)
       for (unsigned int q = 0; q < patch.data.n_cols(); ++q)
-      {
-        const double vx = patch.data(begin, q), vy = begin < end ? patch.data(begin + 1, q) : 0.0;
-        values.insert(values.end(),
-                      {float(cos_r * vx - sin_r * vy), float(sin_r * vx + cos_r * vy), 0.0f});
-      }
-    for (unsigned int c = begin; c <= end; ++c)
-      in_vector[c] = true;
-    point_data += data_array("Float32", name, 3, appended.add(values));
-  }
-  for (unsigned int set = 0; set < n_sets; ++set)
-    if (!in_vector[set])
-    {
-      std::vector<float> values;
-      values.reserve(n_points);
-      for (const auto &patch : patches)
-        for (unsigned int q = 0; q < patch.data.n_cols(); ++q)
+        if (array.components == 1)
           values.push_back(patch.data(set, q));
-      point_data += data_array("Float32", fields.names[set], 1, appended.add(values));
-    }
+        else
+        {
+          const double vx = patch.data(set, q), vy = patch.data(set + 1, q);
+          values.insert(values.end(),
+                        {float(cos_r * vx - sin_r * vy), float(sin_r * vx + cos_r * vy), 0.0f});
+        }
+    point_data += data_array("Float32", array.name, array.components, appended.add(values));
+  }
   for (const auto &[name, values] : cell_data)
   {
     if (values.size() != patches.size())
@@ -180,9 +194,10 @@ void write_vtu_piece(std::ostream &out,
     cell_arrays += data_array("Int32", name, 1, appended.add(v));
   }
   const std::string points_array = data_array("Float32", "", 3, appended.add(points));
-  const std::string cells = data_array("Int32", "connectivity", 1, appended.add(connectivity)) +
-                            data_array("Int32", "offsets", 1, appended.add(offsets)) +
-                            data_array("UInt8", "types", 1, appended.add(types));
+  // one statement each: the arrays' order in the file does not depend on the compiler
+  std::string cells = data_array("Int32", "connectivity", 1, appended.add(connectivity));
+  cells += data_array("Int32", "offsets", 1, appended.add(offsets));
+  cells += data_array("UInt8", "types", 1, appended.add(types));
 
   const std::uint16_t one = 1;
   std::uint8_t first_byte;
@@ -207,6 +222,45 @@ void write_vtu_piece(std::ostream &out,
       << "<AppendedData encoding=\"raw\">\n_";
   out.write(appended.bytes().data(), std::streamsize(appended.bytes().size()));
   out << "\n</AppendedData>\n</VTKFile>\n";
+}
+VtuFields VtuFields::from(
+    const std::vector<std::string> &names,
+    const std::vector<std::tuple<unsigned int, unsigned int, std::string,
+                                 dealii::DataComponentInterpretation::DataComponentInterpretation>>
+        &ranges)
+{
+  VtuFields fields;
+  fields.names = names;
+  for (const auto &[first, last, name, kind] : ranges)
+  {
+    if (kind != dealii::DataComponentInterpretation::component_is_part_of_vector ||
+        last != first + 1 || name.empty())
+      throw std::runtime_error("VTU output: the data sets " + std::to_string(first) + "-" +
+                               std::to_string(last) +
+                               " are not a named 2D vector (the only kind written)");
+    fields.vectors.emplace_back(first, name);
+  }
+  return fields;
+}
+
+void write_pvtu_record(std::ostream &out, const VtuFields &fields,
+                       const std::vector<std::string> &cell_data_names,
+                       const std::vector<std::string> &pieces)
+{
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" header_type=\"UInt64\">\n"
+      << "<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData>\n";
+  for (const PointArray &array : point_arrays(fields))
+    out << "<PDataArray type=\"Float32\" Name=\"" << array.name << "\" NumberOfComponents=\""
+        << array.components << "\"/>\n";
+  out << "</PPointData>\n<PCellData>\n";
+  for (const auto &name : cell_data_names)
+    out << "<PDataArray type=\"Int32\" Name=\"" << name << "\" NumberOfComponents=\"1\"/>\n";
+  out << "</PCellData>\n<PPoints>\n<PDataArray type=\"Float32\" NumberOfComponents=\"3\"/>\n"
+      << "</PPoints>\n";
+  for (const auto &piece : pieces)
+    out << "<Piece Source=\"" << piece << "\"/>\n";
+  out << "</PUnstructuredGrid>\n</VTKFile>\n";
 }
 } // namespace output
 } // namespace sealfe

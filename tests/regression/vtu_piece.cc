@@ -1,6 +1,7 @@
-// The VTU writer (output::write_vtu_piece), read back through VTK: points, point data and cell
-// data equal deal.II's patches, and the Lagrange cells' node order is VTK's, checked by VTK's own
-// interpolation inside each cell against the deal.II mapping and an exactly represented field.
+// The VTU writer (output::write_vtu_piece, write_pvtu_record), read back through VTK: points,
+// point data and cell data equal deal.II's patches, the Lagrange cells' node order is VTK's,
+// checked by VTK's own interpolation inside each cell against the deal.II mapping and an exactly
+// represented field, and pieces (one of them empty) with their .pvtu record read as the whole.
 #include <sealfe/io/vtu_piece.h>
 
 #include <deal.II/base/function.h>
@@ -23,6 +24,7 @@
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <cmath>
@@ -54,11 +56,7 @@ class ExposedDataOut : public DataOut<2>
 public:
   sealfe::output::VtuFields fields() const
   {
-    sealfe::output::VtuFields f;
-    f.names = get_dataset_names();
-    for (const auto &range : get_nonscalar_data_ranges())
-      f.vectors.emplace_back(std::get<0>(range), std::get<1>(range), std::get<2>(range));
-    return f;
+    return sealfe::output::VtuFields::from(get_dataset_names(), get_nonscalar_data_ranges());
   }
 };
 
@@ -143,13 +141,57 @@ void check(const Triangulation<2> &tria, const unsigned int k, const std::string
   }
   EXPECT_LT(max_position_error, float_tolerance);
   EXPECT_LT(max_pressure_error, 10 * float_tolerance);
+
+  // The same patches as three pieces (the first half, none, the second half: a rank may own no
+  // cell) and their .pvtu record: VTK's parallel reader gives the single piece back, every array
+  // in place (the record lists the arrays by position and type, so a record out of step with its
+  // pieces would drop or garble one)
+  const std::size_t half = patches.size() / 2;
+  const std::vector<std::vector<DataOutBase::Patch<2, 2>>> parts = {
+      {patches.begin(), patches.begin() + half}, {}, {patches.begin() + half, patches.end()}};
+  std::vector<std::string> piece_names;
+  for (std::size_t part = 0; part < parts.size(); ++part)
+  {
+    piece_names.push_back("sealfe_vtu_piece_" + name + "_part" + std::to_string(part) + ".vtu");
+    std::ofstream out(fs::temp_directory_path() / piece_names.back(), std::ios::binary);
+    sealfe::output::write_vtu_piece(out, parts[part], data_out.fields(),
+                                    {{"cell_id", std::vector<int>(parts[part].size(), int(part))}});
+  }
+  const fs::path record = fs::temp_directory_path() / ("sealfe_vtu_piece_" + name + ".pvtu");
+  {
+    std::ofstream out(record);
+    sealfe::output::write_pvtu_record(out, data_out.fields(), {"cell_id"}, piece_names);
+  }
+  auto parallel_reader = vtkSmartPointer<vtkXMLPUnstructuredGridReader>::New();
+  parallel_reader->SetFileName(record.c_str());
+  parallel_reader->Update();
+  vtkUnstructuredGrid *whole = parallel_reader->GetOutput();
+  ASSERT_EQ(whole->GetNumberOfPoints(), grid->GetNumberOfPoints());
+  ASSERT_EQ(whole->GetNumberOfCells(), grid->GetNumberOfCells());
+  for (const char *array : {"pressure", "position"})
+  {
+    vtkDataArray *a = whole->GetPointData()->GetArray(array),
+                 *b = grid->GetPointData()->GetArray(array);
+    ASSERT_TRUE(a != nullptr) << array;
+    ASSERT_EQ(a->GetNumberOfComponents(), b->GetNumberOfComponents());
+    for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+      for (int c = 0; c < b->GetNumberOfComponents(); ++c)
+        ASSERT_EQ(a->GetComponent(i, c), b->GetComponent(i, c)) << array << " " << i;
+  }
+  vtkDataArray *part = whole->GetCellData()->GetArray("cell_id");
+  ASSERT_TRUE(part != nullptr);
+  EXPECT_EQ(part->GetTuple1(0), 0.0);
+  EXPECT_EQ(part->GetTuple1(whole->GetNumberOfCells() - 1), 2.0);
   fs::remove(file);
+  fs::remove(record);
+  for (const auto &piece : piece_names)
+    fs::remove(fs::temp_directory_path() / piece);
 }
 } // namespace
 
 // Degree 2 on a curved annulus (MappingQ(2)'s support points are the equidistant output
 // lattice, so VTK's quadratic cell is the deal.II cell); 8 x 4^6 = 32 768 cells: the point array
-// (4.7 MB) spans several 1 MiB compression blocks.
+// (3.5 MB) spans four 1 MiB compression blocks, the last one partial.
 TEST(VtuPiece, QuadraticCellsOnAnAnnulusReadBackThroughVtk)
 {
   Triangulation<2> tria;

@@ -42,7 +42,8 @@ public:
   /// The solver (mesh, dofs, last solution), e.g. for n_dofs() and n_setups().
   const ReynoldsSolver &reynolds() const { return solver.reynolds(); }
   /// The angle (rad) of the frame of the last solve from the stator frame: the rotor angle when
-  /// rotor-borne features turned the film into their frame, else 0 (write_film_fields).
+  /// rotor-borne features turned the film into their frame, else 0 (write_film_fields). After
+  /// coefficients() the stored solution may be that of a perturbed state.
   double frame_angle() const { return last_frame_angle; }
   const FilmSettings &settings() const { return base; }
 

@@ -5,22 +5,32 @@
 #pragma once
 
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/numerics/data_component_interpretation.h>
 
 #include <ostream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace sealfe
 {
 namespace output
 {
-/// The point data of a piece: a name per data set of the patches, and the ranges of data sets
-/// that form one vector (first, last, name), as DataOutInterface describes them.
+/// The point data of a piece: a name per data set of the patches, and the pairs of data sets
+/// that form one 2D vector (first, name).
 struct VtuFields
 {
+  /// From DataOutInterface's data set names and nonscalar ranges; throws for a range that is not
+  /// a named vector of two components (tensors and 1- or 3-component vectors are not written).
+  static VtuFields
+  from(const std::vector<std::string> &names,
+       const std::vector<
+           std::tuple<unsigned int, unsigned int, std::string,
+                      dealii::DataComponentInterpretation::DataComponentInterpretation>> &ranges);
+
   std::vector<std::string> names;
-  std::vector<std::tuple<unsigned int, unsigned int, std::string>> vectors;
+  std::vector<std::pair<unsigned int, std::string>> vectors;
 };
 
 /// Writes `patches` (2D, any subdivision n: (n + 1)^2 points each, coordinates from the patch
@@ -34,5 +44,12 @@ void write_vtu_piece(std::ostream &out,
                      const VtuFields &fields,
                      const std::vector<std::pair<std::string, std::vector<int>>> &cell_data,
                      double rotation = 0);
+
+/// The .pvtu record of pieces written by write_vtu_piece with the same `fields` and cell arrays
+/// named `cell_data_names`: VTK's reader matches the arrays of the record and of the pieces by
+/// position and type, so both are listed from one place (point_arrays in vtu_piece.cc).
+void write_pvtu_record(std::ostream &out, const VtuFields &fields,
+                       const std::vector<std::string> &cell_data_names,
+                       const std::vector<std::string> &pieces);
 } // namespace output
 } // namespace sealfe
