@@ -14,9 +14,11 @@
 namespace
 {
 /// A run without a launcher (no mpirun/srun environment) is one rank talking to nobody. Open MPI
-/// would still start its UCX transport and probe the node for peers, which costs ~0.25 s of a
+/// would still open its transports and probe the node for peers, which costs ~0.25 s of a
 /// ~0.5 s small run (doc/performance.md). Ask for the shared-memory-free, isolated singleton
-/// instead; a setting the user made in the environment wins (setenv does not overwrite).
+/// instead; a setting the user made in the environment or on mpirun's command line wins (setenv
+/// does not overwrite), one made in an MCA parameter file does not (the environment overrides
+/// those files).
 /// Under Open MPI's mpirun with every rank on this node (OMPI_COMM_WORLD_LOCAL_SIZE equal to
 /// OMPI_COMM_WORLD_SIZE) the ranks talk through shared memory, by the ob1 layer, which Open MPI
 /// picks only after opening the cm layer and its PSM/PSM2 (Omni-Path) transports: ~0.2 s per run

@@ -455,6 +455,11 @@ bool JFOSolver::coarse_start()
   const bool whole_on_each_rank = Utilities::MPI::n_mpi_processes(s.mpi_communicator) > 1 &&
                                   s.settings.mesh.mesh_file.empty() &&
                                   !(s.settings.mesh.mesh_size > 0);
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(s.mpi_communicator);
+  // a solver kept from a run of the other kind (a mesh file set since) is made again
+  if (s.coarse_solver && Utilities::MPI::n_mpi_processes(s.coarse_solver->mpi_communicator) !=
+                             (whole_on_each_rank ? 1 : n_ranks))
+    s.coarse_solver.reset();
   if (!s.coarse_solver)
     s.coarse_solver = std::make_unique<ReynoldsSolver>(
         s.settings, whole_on_each_rank ? MPI_COMM_SELF : s.mpi_communicator);
@@ -463,15 +468,28 @@ bool JFOSolver::coarse_start()
   coarse.boundary_pressure = s.boundary_pressure;
   coarse.source = s.source;
   coarse.start_only = true;
+  const bool first_rank = Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0;
+  coarse.reports_progress = s.reports_progress && first_rank;
   TimerOutput::Scope timer_scope(s.timer, "jfo coarse levels");
+  // Every rank decides together: solved whole on each rank, the coarse levels could fail on
+  // one rank only (memory, say), which would then take the full-film start alone and wait
+  // forever in its collective solve.
+  std::string failure;
   try
   {
     coarse.run(s.current_coarsening + 1);
   }
   catch (std::exception &e)
   {
-    if (Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
-      std::cerr << "JFO: the coarse start failed (" << e.what()
+    failure = e.what();
+  }
+  const bool failed_somewhere =
+      whole_on_each_rank ? Utilities::MPI::max(int(!failure.empty()), s.mpi_communicator) != 0
+                         : !failure.empty();
+  if (failed_somewhere)
+  {
+    if (!failure.empty() && s.reports_progress && (first_rank || whole_on_each_rank))
+      std::cerr << "JFO: the coarse start failed (" << failure
                 << "); starting from the full film instead" << std::endl;
     return false; // fall back to the full-film start
   }
@@ -519,11 +537,15 @@ bool JFOSolver::coarse_start()
   const auto &coarse_work = coarse.linear_system_solver.statistics();
   s.coarse_factorizations = coarse_work.factorizations + coarse.coarse_factorizations;
   s.coarse_krylov_iterations = coarse_work.krylov_iterations + coarse.coarse_krylov_iterations;
-  if (!all_found)
+  // the same answer on every rank (each rank looked up its own points)
+  if (Utilities::MPI::min(int(all_found), s.mpi_communicator) == 0)
     return false;
-  // The coarse level's pressure scale (a scale only: the solution does not depend on it), and
-  // the Dirichlet values of this mesh at the constrained dofs.
-  s.pressure_scale = coarse.pressure_scale;
+  // The coarse level's pressure scale (a scale only: the solution does not depend on it, but
+  // every rank must scale its rows alike: rank 0's copy), and the Dirichlet values of this mesh
+  // at the constrained dofs.
+  s.pressure_scale = whole_on_each_rank
+                         ? Utilities::MPI::broadcast(s.mpi_communicator, coarse.pressure_scale, 0)
+                         : coarse.pressure_scale;
   VectorType boundary(s.locally_owned_dofs, s.mpi_communicator);
   s.constraints.distribute(boundary);
   for (const auto i : s.locally_owned_dofs)
@@ -612,8 +634,15 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
                        P2 = polar(cell->vertex(2), t), P = Tensor<1, 2>({r, t});
     const Tensor<1, 2> e1 = P1 - P0, e2 = P2 - P0, d = P - P0;
     const double det = e1[0] * e2[1] - e1[1] * e2[0];
-    const Point<2> unit(std::clamp((d[0] * e2[1] - d[1] * e2[0]) / det, 0.0, 1.0),
-                        std::clamp((e1[0] * d[1] - e1[1] * d[0]) / det, 0.0, 1.0));
+    const double xi = (d[0] * e2[1] - d[1] * e2[0]) / det,
+                 eta = (e1[0] * d[1] - e1[1] * d[0]) / det;
+    // a point outside the cell its (r, theta) slot names: the angles are not nt equal ones
+    // (a mesh aligned with surface features, or sheared along spiral grooves); the caller
+    // searches instead
+    const double slack = 1e-6;
+    if (std::min(xi, eta) < -slack || std::max(xi, eta) > 1 + slack)
+      return false;
+    const Point<2> unit(std::clamp(xi, 0.0, 1.0), std::clamp(eta, 0.0, 1.0));
     cell->get_dof_values(coarse.locally_relevant_solution, p_nodal);
     cell->get_dof_values(coarse.locally_relevant_void, v_nodal);
     double p = 0, v = 0;
@@ -869,7 +898,7 @@ void JFOSolver::solve()
     mass_residual = residual.l2_norm() / flow_scale;
     complementarity_residual = complementarity(a_owned, v_owned);
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_report > std::chrono::seconds(2) &&
+    if (now - last_report > std::chrono::seconds(2) && s.reports_progress &&
         Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
     {
       std::cerr << "sealfe: JFO Newton iteration " << it << ", relative mass residual "

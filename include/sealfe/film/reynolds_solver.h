@@ -228,6 +228,10 @@ private:
   /// A mesh-sequencing level: its JFO state only starts the finer mesh, so run() accepts the
   /// active-set state of a band round without the global check and computes no loads.
   bool start_only = false;
+  /// Whether rank 0 of its communicator prints progress and fallback lines on stderr: not for
+  /// the copies of the coarse levels that ranks other than 0 solve on their own (JFOSolver::
+  /// coarse_start), whose lines would repeat once per rank.
+  bool reports_progress = true;
 
   dealii::parallel::distributed::Triangulation<2> triangulation;
   std::unique_ptr<dealii::FE_Q<2>> fe;
