@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 namespace sealfe
@@ -230,6 +231,15 @@ std::vector<bool> LoadIntegrator::leakage_cells() const
   return leakage_cell;
 }
 
+bool LoadIntegrator::polar_assembly() const
+{
+  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld) takes the
+  // values of PolarCellValues on the built-in annulus; the reynolds and jfo systems are
+  // assembled with FEValues (cell_film_matrices).
+  return !solver.cavitation.is_nonlinear() && solver.mesh_parameters.mesh_file.empty() &&
+         solver.polar_rows;
+}
+
 void LoadIntegrator::add_leakages(const std::vector<types::global_dof_index> &dofs,
                                   const Vector<double> &local_residual,
                                   std::vector<double> &sum) const
@@ -284,6 +294,9 @@ FilmLoads LoadIntegrator::affine_loads() const
     for (unsigned int q = 0; q < n_q; ++q)
       shape(i, q) = s.fe->shape_value(i, quadrature.point(q));
   const std::vector<bool> leakage_cell = leakage_cells();
+  std::optional<PolarCellValues> polar;
+  if (polar_assembly())
+    polar.emplace(*s.mapping, *s.fe, quadrature);
   std::vector<double> p_q(n_q);
   std::vector<Tensor<1, 2>> grad_p(n_q), shape_grad(dofs_per_cell);
   std::vector<double> shape_value(dofs_per_cell);
@@ -307,24 +320,36 @@ FilmLoads LoadIntegrator::affine_loads() const
       }
       if (!leakage_cell[cell->active_cell_index()])
         continue;
-      fe_values.reinit(cell);
-      fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+      // the values the assembly took for this cell (see polar_assembly)
+      const bool turned = polar && polar->reinit(cell);
+      if (!turned)
+      {
+        fe_values.reinit(cell);
+        fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+      }
       local_residual = 0;
       PointState x;
       x.v = x.indicator = x.tau = 0;
       const PointPerturbation none;
       for (unsigned int q = 0; q < n_q; ++q)
       {
-        x.x = fe_values.quadrature_point(q);
+        x.x = turned ? polar->quadrature_point(q) : fe_values.quadrature_point(q);
         x.f = s.local_film(x.x);
-        x.JxW = fe_values.JxW(q);
+        x.JxW = turned ? polar->JxW(q) : fe_values.JxW(q);
         x.p = p_q[q];
-        x.grad_p = grad_p[q];
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
-          shape_grad[i] = fe_values.shape_grad(i, q);
-          shape_value[i] = fe_values.shape_value(i, q);
+          shape_grad[i] = turned ? polar->shape_grad(i, q) : fe_values.shape_grad(i, q);
+          shape_value[i] = turned ? polar->shape_value(i, q) : fe_values.shape_value(i, q);
         }
+        if (turned)
+        {
+          x.grad_p = Tensor<1, 2>();
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            x.grad_p += cell_p(i) * shape_grad[i];
+        }
+        else
+          x.grad_p = grad_p[q];
         add_residual(x, none, shape_grad, shape_value, local_residual);
       }
       add_leakages(dofs, local_residual, sums);
@@ -479,6 +504,13 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   Vector<double> cell_p(dofs_per_cell);
   std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
   const std::vector<bool> leakage_cell = leakage_cells();
+  // The residual of the cells on the circles with the values their system was assembled with
+  // (polar_assembly), so that the leakages of the solved p are its round-off, not the
+  // difference of two cell geometries' round-off times the flow.
+  std::optional<PolarCellValues> polar;
+  if (polar_assembly())
+    polar.emplace(*s.mapping, *s.fe, quadrature);
+  std::vector<Vector<double>> cell_dp(n_k, Vector<double>(dofs_per_cell));
 
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -522,7 +554,9 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
       PointState x;
       x.tau = jfo ? s.streamline_tau(cell) : 0.0;
       // the residual enters the sums only through the leakages (leakage_cells)
-      const bool boundary_cell = leakage_cell[cell->active_cell_index()];
+      const bool on_circle = leakage_cell[cell->active_cell_index()];
+      const bool turned = on_circle && polar && polar->reinit(cell);
+      const bool boundary_cell = on_circle && !turned; // residual from fe_values below
       cell->get_dof_indices(dofs);
       for (unsigned int q = 0; q < n_q; ++q)
       {
@@ -564,7 +598,49 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
             add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
         }
       }
-      if (boundary_cell)
+      if (turned)
+      {
+        // the same terms with the turned row values (no void fraction: not jfo)
+        cell->get_dof_values(s.locally_relevant_solution, cell_p);
+        for (unsigned int k = 0; k < n_k; ++k)
+          if (k < dp_nodal.size() && dp_nodal[k])
+            cell->get_dof_values(*dp_nodal[k], cell_dp[k]);
+          else
+            cell_dp[k] = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+        {
+          x.x = polar->quadrature_point(q);
+          x.f = s.local_film(x.x);
+          x.JxW = polar->JxW(q);
+          x.p = 0;
+          x.v = 0;
+          x.grad_p = x.grad_v = Tensor<1, 2>();
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            shape_grad[i] = polar->shape_grad(i, q);
+            shape_value[i] = polar->shape_value(i, q);
+            x.p += cell_p(i) * shape_value[i];
+            x.grad_p += cell_p(i) * shape_grad[i];
+          }
+          for (unsigned int k = 0; k < n_k; ++k)
+          {
+            PointPerturbation d;
+            d.direction = perturbations[k];
+            if (d.direction)
+            {
+              d.dh = d.direction->dh ? d.direction->dh(x.f.r, x.f.theta) : 0.0;
+              d.dh_t = perturbation_squeeze(*d.direction, x.f.r, x.f.theta, w_frame);
+            }
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              d.dp += cell_dp[k](i) * shape_value[i];
+              d.grad_dp += cell_dp[k](i) * shape_grad[i];
+            }
+            add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
+          }
+        }
+      }
+      if (on_circle)
         for (unsigned int k = 0; k < n_k; ++k)
           add_leakages(dofs, local_residual_k[k], sums[k]);
     }

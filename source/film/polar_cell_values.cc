@@ -3,6 +3,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <cmath>
+#include <limits>
 
 namespace sealfe
 {
@@ -23,13 +24,14 @@ bool PolarCellValues::reinit(const Triangulation<2>::cell_iterator &cell)
   const double r0 = v[0].norm(), r1 = v[1].norm(), r2 = v[2].norm();
   if (!(r0 > 0) || !(r2 > 0))
     return false;
-  // The row: inner and outer radius and angular width (sine of the angle between vertices 0
-  // and 2), each rounded to 2^-36 of the outer radius (rows are far further apart; a value that
-  // straddles a rounding step only gives the row a second first cell).
-  const double scale = std::ldexp(1.0, 36) / std::max(r0, r1);
+  // The row: inner and outer radius, in units of 2^-36 m (1.5e-11 m: far below the spacing of
+  // rows, far above the round-off of a radius), and angular width (sine of the angle between
+  // vertices 0 and 2) in units of 2^-36. A value that straddles a rounding step only gives the
+  // row a second first cell.
+  const double scale = std::ldexp(1.0, 36); // per metre
   const double width = (v[0][0] * v[2][1] - v[0][1] * v[2][0]) / (r0 * r2);
-  const std::array<long long, 3> key = {{std::llround(r0 * scale), std::llround(r1 * scale),
-                                         std::llround(width * std::ldexp(1.0, 36))}};
+  const std::array<long long, 3> key = {
+      {std::llround(r0 * scale), std::llround(r1 * scale), std::llround(width * scale)}};
   auto it = rows.find(key);
   if (it == rows.end())
   {
@@ -68,8 +70,9 @@ bool PolarCellValues::reinit(const Triangulation<2>::cell_iterator &cell)
   const double norm = std::sqrt(dot * dot + cross * cross);
   c = dot / norm;
   s = cross / norm;
-  // Refuse a cell whose vertices are not those of the first cell turned by that angle.
-  const double tolerance = 1e-12 * std::max(r0, r1);
+  // Refuse a cell whose vertices are not those of the first cell turned by that angle (to
+  // 64 u r: the round-off of the mesh's vertices and of the rotation, a few u r each).
+  const double tolerance = 64 * std::numeric_limits<double>::epsilon() * std::max(r0, r1);
   for (unsigned int k = 0; k < 4; ++k)
   {
     const Point<2> &w = row->vertices[k];

@@ -129,7 +129,10 @@ TEST(PolarCellValues, SolveEqualsTheFEValuesAssembly)
     ASSERT_TRUE(turned.loads_from_assembled_sums());
     const double F = std::abs(a.force_z), ro = s.geometry.outer_radius;
     const double Q = std::abs(a.leakage_outer), T = std::abs(a.friction_torque);
-    const double tol = 1e-10; // condition number ~1e5 times ~1e-15 entry round-off
+    // The turned gradients differ from FEValues' by up to ~100 u r_o/h_r (3e-12 relative on
+    // this mesh, first test), so do the matrix entries; the loads were observed within 2.4e-13.
+    // 1e-10 is an empirical margin above that, not a derived bound.
+    const double tol = 1e-10;
     EXPECT_NEAR(a.force_z, b.force_z, tol * F) << "degree " << degree;
     EXPECT_NEAR(a.moment_x, b.moment_x, tol * F * ro) << "degree " << degree;
     EXPECT_NEAR(a.moment_y, b.moment_y, tol * F * ro) << "degree " << degree;

@@ -158,7 +158,9 @@ public:
   std::function<double(const dealii::Point<2> &)> boundary_pressure;
   std::function<double(const dealii::Point<2> &)> source;
   /// The assembly on the built-in annulus takes each cell's geometry from its radial row
-  /// (PolarCellValues); false: FEValues on every cell (tests compare the two).
+  /// (PolarCellValues); false: FEValues on every cell of the fine-level assembly and the
+  /// leakage residual (tests compare the two). The multigrid level matrices (cg-gmg) always
+  /// take PolarCellValues.
   bool polar_rows = true;
 
   /// Everything the solve depends on. Changing it between runs is allowed; the mesh is rebuilt
