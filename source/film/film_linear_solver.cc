@@ -1,5 +1,6 @@
 #include <sealfe/film/film_linear_solver.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
@@ -40,7 +41,8 @@ const char *FilmLinearSolver::method_name() const
 FilmLinearSolver::Method FilmLinearSolver::choose(const FilmSettings::LinearSolver choice,
                                                   const bool symmetric,
                                                   const types::global_dof_index n,
-                                                  const bool multigrid_available)
+                                                  const bool multigrid_available,
+                                                  const unsigned int n_ranks)
 {
   // CG needs a symmetric matrix: the cavitation Newton systems never get it, whatever the
   // setting asks for.
@@ -58,6 +60,13 @@ FilmLinearSolver::Method FilmLinearSolver::choose(const FilmSettings::LinearSolv
     return Method::direct;
   if (choice == LS::cg_gmg)
     return multigrid_available ? Method::cg_gmg : Method::cg_amg;
+  // On several ranks the geometric multigrid wins at every size measured: distributed MUMPS on
+  // these 2D meshes is no faster on two ranks than on one, while the multigrid's set-up, smoothing
+  // and CG split (doc/performance.md, "Two ranks"). In-process on 2 ranks: 16 896 dofs 0.056 s
+  // against 0.083 s direct, 66 560 dofs 0.18 against 0.30 s. The JFO coarse levels and the table
+  // sweeps solve on MPI_COMM_SELF, so they count one rank and keep the direct solver.
+  if (multigrid_available && n_ranks > 1)
+    return Method::cg_gmg;
   if (n < direct_solver_limit)
     return Method::direct;
   return multigrid_available ? Method::cg_gmg : Method::cg_amg;
@@ -86,7 +95,8 @@ void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
                                const std::vector<double> &x, const std::vector<double> &y,
                                const bool allow_reuse, const bool deferred)
 {
-  const Method method = choose(choice, symmetric_in, matrix_in.m(), multigrid != nullptr);
+  const Method method = choose(choice, symmetric_in, matrix_in.m(), multigrid != nullptr,
+                               Utilities::MPI::n_mpi_processes(matrix_in.get_mpi_communicator()));
   // Only an AMG hierarchy is worth keeping: the Fischer-Burmeister Jacobians change at every
   // cavitated node between Newton steps, so an old KLU factorisation made GMRES fail its
   // iteration limit in 6 of 7 steps (measured), while an AMG hierarchy of a similar matrix stays

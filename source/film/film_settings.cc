@@ -26,9 +26,10 @@ void FilmSettings::declare_solver_parameters(ParameterHandler &prm)
   prm.declare_entry("Polynomial degree", "2", Patterns::Integer(1, 6),
                     "Degree k of the continuous Lagrange elements (and of the curved mapping).");
   prm.declare_entry("Linear solver", "auto", Patterns::Selection("auto|direct|cg-amg|cg-gmg"),
-                    "auto: sparse direct (KLU) below 150000 unknowns; above, CG with geometric "
-                    "multigrid on the levels of the built-in mesh (cg-gmg), or with algebraic "
-                    "multigrid (cg-amg) on a mesh file; direct, cg-amg or cg-gmg force one "
+                    "auto: sparse direct (KLU or MUMPS) below 150000 unknowns; above, CG with "
+                    "geometric multigrid on the levels of the built-in mesh (cg-gmg), or with "
+                    "algebraic multigrid (cg-amg) on a mesh file; on several MPI ranks cg-gmg at "
+                    "every size on the built-in mesh; direct, cg-amg or cg-gmg force one "
                     "(cavitation Newton systems: direct unless cg-amg).");
   prm.declare_entry("Solver tolerance", "1e-12", Patterns::Double(0),
                     "Relative residual tolerance of the iterative solver (the equation is scaled "

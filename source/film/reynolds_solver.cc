@@ -102,10 +102,10 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   dof_handler.distribute_dofs(*fe);
   lap("setup: dofs");
   // The geometric multigrid's line smoother wants the dofs numbered by radial lines.
-  if (FilmLinearSolver::choose(linear_solver, true, dof_handler.n_dofs(),
-                               mesh_parameters.mesh_file.empty() &&
-                                   FilmMultigrid::has_hierarchy(dof_handler)) ==
-      FilmLinearSolver::Method::cg_gmg)
+  if (FilmLinearSolver::choose(
+          linear_solver, true, dof_handler.n_dofs(),
+          mesh_parameters.mesh_file.empty() && FilmMultigrid::has_hierarchy(dof_handler),
+          Utilities::MPI::n_mpi_processes(mpi_communicator)) == FilmLinearSolver::Method::cg_gmg)
     multigrid.number_by_radial_lines(dof_handler, *mapping);
   lap("setup: numbering by lines");
 
@@ -247,7 +247,8 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
   const bool hierarchy =
       mesh_parameters.mesh_file.empty() && symmetric && FilmMultigrid::has_hierarchy(dof_handler);
   const auto method =
-      FilmLinearSolver::choose(linear_solver, symmetric, dof_handler.n_dofs(), hierarchy);
+      FilmLinearSolver::choose(linear_solver, symmetric, dof_handler.n_dofs(), hierarchy,
+                               Utilities::MPI::n_mpi_processes(mpi_communicator));
   if (method == FilmLinearSolver::Method::cg_gmg)
   {
     if (!multigrid.is_setup())

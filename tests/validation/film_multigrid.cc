@@ -104,6 +104,30 @@ TEST(FilmMultigrid, AutoPicksItAboveTheDirectLimitOnTheBuiltInMesh)
             M::cg_amg);
 }
 
+TEST(FilmMultigrid, AutoPicksItAtEverySizeOnSeveralRanks)
+{
+  // On several ranks distributed MUMPS gains nothing on these meshes (doc/performance.md, "Two
+  // ranks"): `auto` takes cg-gmg below the direct limit too, where the mesh has levels and the
+  // system is symmetric; elsewhere the one-rank rule.
+  using M = FilmLinearSolver::Method;
+  const auto automatic = FilmSettings::LinearSolver::automatic;
+  const unsigned int big = FilmLinearSolver::direct_solver_limit;
+  for (const unsigned int ranks : {2u, 3u, 8u})
+  {
+    for (const unsigned int n : {100u, 16896u, big - 1, big, 10 * big})
+    {
+      EXPECT_EQ(FilmLinearSolver::choose(automatic, true, n, true, ranks), M::cg_gmg);
+      EXPECT_EQ(FilmLinearSolver::choose(automatic, false, n, true, ranks), M::direct); // Newton
+      EXPECT_EQ(FilmLinearSolver::choose(FilmSettings::LinearSolver::direct, true, n, true, ranks),
+                M::direct);
+    }
+    EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big - 1, false, ranks), M::direct);
+    EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big, false, ranks), M::cg_amg);
+  }
+  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big - 1, true, 1), M::direct); // one rank
+  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big, true, 1), M::cg_gmg);
+}
+
 TEST(FilmMultigrid, LevelCoefficientIsTheFilmsPressureFlowTensor)
 {
   // The level matrices take K from ReynoldsSolver::pressure_flow, a cheaper evaluation of

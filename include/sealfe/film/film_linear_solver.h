@@ -56,18 +56,22 @@ public:
     unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
   };
 
-  /// Below this many unknowns `auto` factorises symmetric systems; above it Krylov + multigrid.
+  /// Below this many unknowns `auto` factorises symmetric systems on one rank (and on several
+  /// without a mesh hierarchy); above it Krylov + multigrid.
   static constexpr unsigned int direct_solver_limit = 150000;
   /// A lagged preconditioner is rebuilt when GMRES needs more than this.
   static constexpr unsigned int lagged_iteration_limit = 60;
   /// gmres-amg falls back to KLU after this many iterations.
   static constexpr unsigned int gmres_iteration_limit = 200;
 
-  /// The method `choice` gives for a matrix of `n` unknowns: `auto` factorises below
-  /// direct_solver_limit and every nonsymmetric matrix; above it, symmetric systems get cg-gmg
-  /// where the mesh has a level hierarchy (`multigrid_available`), cg-amg elsewhere.
+  /// The method `choice` gives for a matrix of `n` unknowns distributed over `n_ranks` MPI
+  /// ranks: `auto` factorises every nonsymmetric matrix; a symmetric one gets cg-gmg where the
+  /// mesh has a level hierarchy (`multigrid_available`) above direct_solver_limit on one rank and
+  /// at every size on several ranks (where distributed MUMPS does not gain); without a hierarchy,
+  /// direct below direct_solver_limit and cg-amg above, whatever the rank count.
   static Method choose(FilmSettings::LinearSolver choice, bool symmetric,
-                       dealii::types::global_dof_index n, bool multigrid_available);
+                       dealii::types::global_dof_index n, bool multigrid_available,
+                       unsigned int n_ranks = 1);
   /// The geometric multigrid of the mesh and the function that rebuilds its level operators for
   /// the prepared matrix (called where a factorisation would be). Null: no hierarchy.
   void set_multigrid(const FilmMultigrid *multigrid, std::function<void()> prepare_levels);
