@@ -227,9 +227,10 @@ TEST(TransientRotorFields, RotorPadStandsAtItsAnglePlusTheRotorsTurnInTheWritten
         land_worst = std::max(land_worst, pocket / 2 - offset);
     }
     std::cout << "t = " << t << " s, phi = " << phi << " rad: pressure max " << p_max << " Pa at "
-              << angle_max << " rad (step at " << std::remainder(step, 2 * M_PI) << "), min "
-              << p_min << " Pa at " << angle_min << " rad (pocket start at "
-              << std::remainder(pocket_start, 2 * M_PI) << "); pocket points " << n_pocket
+              << angle_max << " rad (step at " << std::remainder(step, 2 * M_PI) << ", off by "
+              << angle_difference(angle_max, step) << "), min " << p_min << " Pa at " << angle_min
+              << " rad (pocket start at " << std::remainder(pocket_start, 2 * M_PI) << ", off by "
+              << angle_difference(angle_min, pocket_start) << "); pocket points " << n_pocket
               << ", overreach " << in_pocket_worst << ", land inside " << land_worst << " rad\n";
     EXPECT_GT(n_pocket, 0u);
     EXPECT_LE(in_pocket_worst, cell);
