@@ -176,7 +176,6 @@ LowRankSolve solve_column_update(SparseDirect &lu,
         column += std::abs(X[(q + 1) * n + columns[p]]);
       terms = std::max(terms, column);
     }
-    const double norm = C.l1_norm();
     // a zero pivot throws in deal.II: that is a singular C
     try
     {
@@ -187,8 +186,16 @@ LowRankSolve solve_column_update(SparseDirect &lu,
       rcond = 0;
       return LowRankSolve::ill_conditioned;
     }
-    // 1 / (|I| + |E^T Z|) |C^-1|, from LAPACK's estimate 1 / (|C| |C^-1|)
-    rcond = C.reciprocal_condition_number(norm) * norm / (1 + terms);
+    // |C^-1|_1 exactly, column by column (k is small)
+    double inverse_norm = 0;
+    for (std::size_t q = 0; q < k; ++q)
+    {
+      dealii::Vector<double> e(k);
+      e(q) = 1;
+      C.solve(e);
+      inverse_norm = std::max(inverse_norm, e.l1_norm());
+    }
+    rcond = 1 / ((1 + terms) * inverse_norm);
     if (!(rcond >= min_rcond))
       return LowRankSolve::ill_conditioned;
     C.solve(t);

@@ -67,7 +67,7 @@ enum class LowRankSolve
 /// [b U] (k + 1 columns) and the k x k capacitance system C = I + E^T A0^-1 U, then
 /// x = y - Z C^-1 E^T y (y = A0^-1 b, Z = A0^-1 U). det A1 = det A0 det C, so A1 is singular
 /// where C is: refused (ill_conditioned) when 1 / ((1 + |E^T Z|_1) |C^-1|_1), C's reciprocal
-/// condition number against the terms summed into it (LAPACK's estimate of |C^-1|), is below
+/// condition number against the terms summed into it, is below
 /// `min_rcond`. The answer is accepted only if its normwise backward error for A1 (given as
 /// `matrix`), |b - A1 x|_inf / (|A1|_inf |x|_inf + |b|_inf), is at most `max_backward_error`
 /// (else inaccurate). One rank; b, x: the n values in order. `rcond`, `backward_error`: what
