@@ -730,7 +730,11 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
   if (factored_keep_pressure.empty() || !lu || row_gid.empty() ||
       s.linear_system_solver.statistics().factorizations != factored_count)
     return false;
+  // Above low_rank_max_dofs the block solve costs as much as the factorisation it replaces
+  // (measured at 5.3e5 dofs, doc/performance.md)
   const std::size_t n = s.dof_handler.n_dofs();
+  if (n > low_rank_max_dofs)
+    return false;
   const double *pa = plain_values(set_a, n), *pv = plain_values(set_v, n),
                *b = plain_values(newton_rhs, n);
   double *x = const_cast<double *>(plain_values(w, n));
