@@ -306,6 +306,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
       {"newton_steps", solver.newton_steps()},
       {"active_set_rounds", solver.active_set_rounds()},
       {"band_factorizations", solver.band_rounds()},
+      {"low_rank_updates", solver.low_rank_updates()},
       {"coarse_level_factorizations", solver.coarse_level_factorizations()},
       {"coarse_level_krylov_iterations", solver.coarse_level_krylov_iterations()},
       {"final_residual", solver.nonlinear_residual()}};

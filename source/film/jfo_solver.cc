@@ -703,6 +703,84 @@ void JFOSolver::newton_direction()
   recover();
 }
 
+void JFOSolver::remember_factored_set(const VectorType &set_a, const VectorType &set_v)
+{
+  factored_keep_pressure.clear();
+  const std::size_t n = s.dof_handler.n_dofs();
+  const double *pa = plain_values(set_a, n), *pv = plain_values(set_v, n);
+  if (global_matrices != 1 || assemble_by_cells || low_rank_limit == 0 || !pa || !pv ||
+      !s.linear_system_solver.factorization())
+    return;
+  factored_keep_pressure.resize(n);
+  for (std::size_t j = 0; j < n; ++j)
+    factored_keep_pressure[j] = pa[j] >= pv[j];
+  factored_count = s.linear_system_solver.statistics().factorizations;
+}
+
+bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
+{
+  // The Jacobian of a fixed set takes column j from P A where node j keeps its pressure, else
+  // from G, so that of the set (set_a, set_v) is the factorised one plus a rank-k term, k the
+  // nodes whose set differs: A1 = A0 + U E^T with U(:, d) = +-(P A - G)(:, j_d). A block solve
+  // of k + 1 columns with A0's factors and a k x k system cost less than a new factorisation
+  // for small k (doc/performance.md, Session 11). The accepted round (no flips) is one of these
+  // at most: solve_column_update checks the true residual of A1, so the answer is an exact
+  // solve to round-off.
+  SparseDirect *lu = s.linear_system_solver.factorization();
+  if (factored_keep_pressure.empty() || !lu || row_gid.empty() ||
+      s.linear_system_solver.statistics().factorizations != factored_count)
+    return false;
+  // Above low_rank_max_dofs the block solve costs as much as the factorisation it replaces
+  // (measured at 5.3e5 dofs, doc/performance.md)
+  const std::size_t n = s.dof_handler.n_dofs();
+  if (n > low_rank_max_dofs)
+    return false;
+  const double *pa = plain_values(set_a, n), *pv = plain_values(set_v, n),
+               *b = plain_values(newton_rhs, n);
+  double *x = const_cast<double *>(plain_values(w, n));
+  if (!pa || !pv || !b || !x)
+    return false;
+  std::vector<int> position(n, -1);
+  std::vector<unsigned int> columns;
+  for (std::size_t j = 0; j < n; ++j)
+    if (!constrained[j] && (pa[j] >= pv[j]) != static_cast<bool>(factored_keep_pressure[j]))
+    {
+      if (columns.size() == low_rank_limit)
+        return false;
+      position[j] = columns.size();
+      columns.push_back(j);
+    }
+  TimerOutput::Scope timer_scope(s.timer, "jfo low-rank update");
+  std::vector<double> U(n * columns.size(), 0.0);
+  const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
+  for_each_row(M,
+               [&](const int row, const int entries, const double *, const int *row_columns,
+                   const std::size_t first)
+               {
+                 for (int e = 0; e < entries; ++e)
+                 {
+                   const auto j = column_gid[row_columns[e]];
+                   if (position[j] >= 0)
+                   {
+                     const double difference = global_PA[first + e] - global_G[first + e];
+                     U[position[j] * n + row_gid[row]] = pa[j] >= pv[j] ? difference : -difference;
+                   }
+                 }
+               });
+  // C is refused below rcond sqrt(u): its solve would lose more than half the digits. The
+  // backward error bound 2^-40 (9e-13) is a guard against a failed update, far above the
+  // round-off of a backward-stable solve (the factorised rounds' solves measure 7e-19..4e-17,
+  // the updates 4e-19..4e-17 on the tilted seal at 3.3e4 and 1.3e5 dofs)
+  double rcond, backward_error;
+  const LowRankSolve result = solve_column_update(*lu, s.system_matrix, columns, std::move(U), b, x,
+                                                  std::sqrt(std::numeric_limits<double>::epsilon()),
+                                                  0x1p-40, rcond, backward_error);
+  if (result != LowRankSolve::solved)
+    return false;
+  ++low_rank_updates;
+  return true;
+}
+
 bool JFOSolver::polish()
 {
   // Active-set polish: with the cavitated set fixed the discrete problem is linear. Starting
@@ -742,8 +820,13 @@ bool JFOSolver::polish()
     else
     {
       ++global_rounds;
-      s.factorize(false, true);
-      s.solve_linear_system(newton_rhs, w);
+      // the confirming rounds differ from the last factorised one in few columns
+      if (!low_rank_solve(set_a, set_v))
+      {
+        s.factorize(false, true);
+        s.solve_linear_system(newton_rhs, w);
+        remember_factored_set(set_a, set_v);
+      }
     }
     s.homogeneous_constraints.set_zero(w);
     std::fill(flipped.begin(), flipped.end(), false);
@@ -935,6 +1018,7 @@ void JFOSolver::solve()
   s.jfo_newton_steps = it;
   s.jfo_active_set_rounds = active_set_rounds;
   s.jfo_band_rounds = band_rounds;
+  s.jfo_low_rank_updates = low_rank_updates;
   s.cavitation_residual = std::max(mass_residual, complementarity_residual);
   if (!converged)
   {

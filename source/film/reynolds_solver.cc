@@ -632,7 +632,7 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   current_coarsening = coarsening;
   coarse_iterations = 0;
   coarse_factorizations = coarse_krylov_iterations = 0;
-  jfo_newton_steps = jfo_active_set_rounds = jfo_band_rounds = 0;
+  jfo_newton_steps = jfo_active_set_rounds = jfo_band_rounds = jfo_low_rank_updates = 0;
   setup_system(coarsening);
   assemble_system();
   // JFO starts from the JFO solution of the mesh twice as coarse (mesh sequencing) and solves

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -10,11 +11,41 @@
 #include <Epetra_LinearProblem.h>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace sealfe
 {
+namespace
+{
+/// Amesos_Mumps with a solve of several right-hand sides in one MUMPS call (NRHS > 1): Amesos
+/// calls MUMPS once per column of a multivector.
+class BlockMumps : public Amesos_Mumps
+{
+public:
+  using Amesos_Mumps::Amesos_Mumps;
+  /// The n x m column-major block X overwritten by A^-1 X (one rank: the host holds it all).
+  int solve_block(double *X, const int n, const int m)
+  {
+    const int nrhs = MDS.nrhs, lrhs = MDS.lrhs;
+    double *rhs = MDS.rhs;
+    MDS.job = 3;
+    MDS.nrhs = m;
+    MDS.lrhs = n;
+    MDS.rhs = X;
+    dmumps_c(&MDS);
+    const int info = MDS.info[0];
+    MDS.nrhs = nrhs;
+    MDS.lrhs = lrhs;
+    MDS.rhs = rhs;
+    return info;
+  }
+};
+} // namespace
+
 SparseDirect::SparseDirect() = default;
 SparseDirect::~SparseDirect() = default;
 
@@ -44,8 +75,11 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     // nested dissection and MUMPS's automatic choice at 2.6e5 and 1e6 unknowns.
     package = A.NumGlobalRows64() < multifrontal_limit ? "KLU" : "MUMPS";
     Amesos factory;
-    solver.reset(
-        factory.Create(package == std::string("KLU") ? "Amesos_Klu" : "Amesos_Mumps", *problem));
+    // MUMPS made directly (what the factory does) as BlockMumps, for solve_block
+    if (package == std::string("KLU"))
+      solver.reset(factory.Create("Amesos_Klu", *problem));
+    else
+      solver = std::make_unique<BlockMumps>(*problem);
     if (!solver)
       throw std::runtime_error(std::string("Reynolds solver: Amesos ") + package +
                                " is not available");
@@ -74,6 +108,136 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
       static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
   if (solver->Solve() != 0)
     throw std::runtime_error(std::string("Reynolds solver: ") + package + " solve failed");
+}
+
+void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
+{
+  const Epetra_RowMatrix &A = *dynamic_cast<const Epetra_RowMatrix *>(problem->GetOperator());
+  const int n = A.NumMyRows();
+  if (A.Comm().NumProc() != 1 || X.size() != static_cast<std::size_t>(n) * m)
+    throw std::logic_error("SparseDirect::solve_block: one rank, n x m values");
+  if (auto *mumps = dynamic_cast<BlockMumps *>(solver.get()))
+  {
+    if (mumps->solve_block(X.data(), n, m) != 0)
+      throw std::runtime_error("Reynolds solver: MUMPS block solve failed");
+    return;
+  }
+  // KLU: one klu_solve for the whole multivector
+  const std::vector<double> B(X);
+  Epetra_MultiVector x(View, A.OperatorDomainMap(), X.data(), n, m),
+      b(View, A.OperatorRangeMap(), const_cast<double *>(B.data()), n, m);
+  problem->SetLHS(&x);
+  problem->SetRHS(&b);
+  const int status = solver->Solve();
+  problem->SetLHS(nullptr);
+  problem->SetRHS(nullptr);
+  if (status != 0)
+    throw std::runtime_error(std::string("Reynolds solver: ") + package + " solve failed");
+}
+
+LowRankSolve solve_column_update(SparseDirect &lu,
+                                 const dealii::TrilinosWrappers::SparseMatrix &matrix,
+                                 const std::vector<unsigned int> &columns, std::vector<double> U,
+                                 const double *b, double *x, const double min_rcond,
+                                 const double max_backward_error, double &rcond,
+                                 double &backward_error)
+{
+  rcond = backward_error = std::numeric_limits<double>::quiet_NaN();
+  const std::size_t n = matrix.m(), k = columns.size();
+  if (U.size() != n * k)
+    throw std::logic_error("solve_column_update: U must hold n x k values");
+  // [y Z] = A0^-1 [b U], one block solve, in U's storage (n x (k + 1) values: 260 MB at 1e6
+  // unknowns and k = 32)
+  std::vector<double> X(std::move(U));
+  X.resize(n * (k + 1));
+  std::copy_backward(X.begin(), X.begin() + n * k, X.end());
+  std::copy(b, b + n, X.begin());
+  lu.solve_block(X, k + 1);
+  const double *y = X.data();
+  // capacitance C = I + E^T Z and t = C^-1 E^T y
+  dealii::LAPACKFullMatrix<double> C(k, k);
+  dealii::Vector<double> t(k);
+  for (std::size_t p = 0; p < k; ++p)
+  {
+    t(p) = y[columns[p]];
+    for (std::size_t q = 0; q < k; ++q)
+      C(p, q) = (p == q ? 1.0 : 0.0) + X[(q + 1) * n + columns[p]];
+  }
+  if (k > 0)
+  {
+    // |E^T Z|_1: C's condition is measured against the size of the terms summed into it, so that
+    // a cancellation (C = 1 + z with z near -1: A1 near singular) shows even when k = 1, where
+    // the plain condition number of C is 1
+    double terms = 0;
+    for (std::size_t q = 0; q < k; ++q)
+    {
+      double column = 0;
+      for (std::size_t p = 0; p < k; ++p)
+        column += std::abs(X[(q + 1) * n + columns[p]]);
+      terms = std::max(terms, column);
+    }
+    // a zero pivot throws in deal.II: that is a singular C
+    try
+    {
+      C.compute_lu_factorization();
+    }
+    catch (...)
+    {
+      rcond = 0;
+      return LowRankSolve::ill_conditioned;
+    }
+    // |C^-1|_1 exactly, column by column (k is small)
+    double inverse_norm = 0;
+    for (std::size_t q = 0; q < k; ++q)
+    {
+      dealii::Vector<double> e(k);
+      e(q) = 1;
+      C.solve(e);
+      inverse_norm = std::max(inverse_norm, e.l1_norm());
+    }
+    rcond = 1 / ((1 + terms) * inverse_norm);
+    if (!(rcond >= min_rcond))
+      return LowRankSolve::ill_conditioned;
+    C.solve(t);
+  }
+  else
+    rcond = 1;
+  // x = y - Z t
+  std::vector<double> result(y, y + n);
+  for (std::size_t q = 0; q < k; ++q)
+  {
+    const double *z = X.data() + (q + 1) * n;
+    for (std::size_t i = 0; i < n; ++i)
+      result[i] -= z[i] * t(q);
+  }
+  // the true residual of A1: the update is exact algebra, its round-off is checked here
+  const Epetra_CrsMatrix &A1 = matrix.trilinos_matrix();
+  std::vector<double> x_column(A1.NumMyCols()); // result by local column index
+  for (int c = 0; c < A1.NumMyCols(); ++c)
+    x_column[c] = result[A1.ColMap().GID64(c)];
+  double r_max = 0, x_max = 0, b_max = 0;
+  for (int row = 0; row < A1.NumMyRows(); ++row)
+  {
+    int entries;
+    double *values;
+    int *cols;
+    A1.ExtractMyRowView(row, entries, values, cols);
+    double r = b[A1.RowMap().GID64(row)];
+    for (int e = 0; e < entries; ++e)
+      r -= values[e] * x_column[cols[e]];
+    r_max = std::max(r_max, std::abs(r));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    x_max = std::max(x_max, std::abs(result[i]));
+    b_max = std::max(b_max, std::abs(b[i]));
+  }
+  const double scale = matrix.linfty_norm() * x_max + b_max;
+  backward_error = scale > 0 ? r_max / scale : 0.0;
+  if (!(backward_error <= max_backward_error))
+    return LowRankSolve::inaccurate;
+  std::copy(result.begin(), result.end(), x);
+  return LowRankSolve::solved;
 }
 
 std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &matrix,

@@ -3,7 +3,8 @@
 //  - JFO conserves mass: inner + outer leakage = 0 to 1e-8 relative, and the flow through any
 //    circle of the dam equals the leakage (to the accuracy of a direct flux integral);
 //  - the JFO residuals as products of the assembled matrices give the loads of the cell-by-cell
-//    assembly to the Newton tolerance, and the mass balance holds on both;
+//    assembly to the Newton tolerance, and the mass balance holds on both; so does the low-rank
+//    update of the global active-set rounds against a factorisation per round;
 //  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
 //  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
 //    10 kPa, waviness n = 1..12 up to 0.9 C0, and no supply (pi = po = p_cav) is refused.
@@ -115,6 +116,47 @@ TEST(CavitationFE, JfoResidualsByMatrixProductsGiveTheCellAssemblysSolution)
   EXPECT_NEAR(l[0].force_z, l[1].force_z, tolerance * std::abs(l[1].force_z));
   EXPECT_NEAR(l[0].moment_x, l[1].moment_x, tolerance * std::abs(l[1].force_z) * film.outer_radius);
   EXPECT_NEAR(l[0].leakage_outer, l[1].leakage_outer, tolerance * std::abs(l[1].leakage_outer));
+}
+
+TEST(CavitationFE, JfoLowRankUpdateGivesTheFactorisedRoundsSolution)
+{
+  // A global active-set round whose set differs from the last factorised one in at most
+  // JFOSolver::low_rank_limit nodes solves by a Sherman-Morrison-Woodbury update of that
+  // factorisation (sparse_direct.h, solve_column_update) instead of a new one. It solves the same
+  // linear system to round-off (its backward error is checked), so the iteration takes the same
+  // rounds and ends on the same set, where the problem is linear: the loads agree to the Newton
+  // tolerance, and the mass balance holds (1e-8, as above) either way.
+  const FilmThickness film = wavy_film();
+  const OperatingConditions conditions = low_pressure();
+  const double tolerance = 1e-10;
+  FilmLoads l[2];
+  unsigned int updates[2], rounds[2], factorizations[2];
+  const unsigned int limit = JFOSolver::low_rank_limit;
+  for (const bool with_update : {false, true})
+  {
+    JFOSolver::low_rank_limit = with_update ? limit : 0;
+    ReynoldsSolver solver(MPI_COMM_WORLD);
+    solver.cavitation.tolerance = tolerance;
+    l[with_update] = solve(film, conditions, Cavitation::jfo, 16, 256, 2, &solver);
+    updates[with_update] = solver.low_rank_updates();
+    rounds[with_update] = solver.active_set_rounds();
+    factorizations[with_update] = solver.linear_solver_statistics().statistics().factorizations;
+    EXPECT_LT(solver.nonlinear_residual(), tolerance);
+    const double Q = std::abs(l[with_update].leakage_outer);
+    EXPECT_LT(std::abs(l[with_update].leakage_inner + l[with_update].leakage_outer), 1e-8 * Q);
+  }
+  JFOSolver::low_rank_limit = limit;
+  std::cout << "low-rank updates " << updates[1] << ", factorisations " << factorizations[0]
+            << " -> " << factorizations[1] << ", active-set rounds " << rounds[1] << "\n";
+  EXPECT_EQ(updates[0], 0u);
+  EXPECT_GE(updates[1], 1u); // the confirming round at least
+  EXPECT_EQ(rounds[0], rounds[1]);
+  EXPECT_EQ(factorizations[1] + updates[1], factorizations[0]);
+  ASSERT_GT(l[0].cavitated_fraction, 0.05);
+  EXPECT_NEAR(l[0].cavitated_fraction, l[1].cavitated_fraction, tolerance);
+  EXPECT_NEAR(l[0].force_z, l[1].force_z, tolerance * std::abs(l[0].force_z));
+  EXPECT_NEAR(l[0].moment_x, l[1].moment_x, tolerance * std::abs(l[0].force_z) * film.outer_radius);
+  EXPECT_NEAR(l[0].leakage_outer, l[1].leakage_outer, tolerance * std::abs(l[0].leakage_outer));
 }
 
 TEST(CavitationFE, JfoMeshConvergence)

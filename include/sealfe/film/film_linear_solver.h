@@ -96,6 +96,12 @@ public:
   const char *method_name() const;
   /// The sparse direct package of the last factorisation, "KLU" or "MUMPS" ("" if none).
   const char *direct_package() const { return direct.package_name(); }
+  /// The factorisation of the last prepared matrix when it is a direct one and done (not
+  /// deferred): the JFO's low-rank updates solve with it. Null otherwise.
+  SparseDirect *factorization()
+  {
+    return current_method == Method::direct && !pending && direct.initialized() ? &direct : nullptr;
+  }
   const Statistics &statistics() const { return stats; }
   void reset_statistics() { stats = Statistics(); }
 

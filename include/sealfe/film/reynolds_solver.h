@@ -141,6 +141,9 @@ public:
   /// Of those, the band rounds: each a sparse direct factorisation of a principal submatrix (the
   /// dofs near the last set changes), not counted in linear_solver_statistics().
   unsigned int band_rounds() const { return jfo_band_rounds; }
+  /// Of the global rounds, those solved by a low-rank update of an earlier round's factorisation
+  /// (no factorisation: JFOSolver::low_rank_solve).
+  unsigned int low_rank_updates() const { return jfo_low_rank_updates; }
   /// Factorisations (or AMG set-ups) and Krylov iterations of all mesh-sequencing levels.
   unsigned int coarse_level_factorizations() const { return coarse_factorizations; }
   unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
@@ -271,7 +274,8 @@ private:
   unsigned int cavitation_iterations = 0;
   unsigned int coarse_iterations = 0; // Newton iterations spent on the mesh-sequencing levels
   unsigned int coarse_factorizations = 0, coarse_krylov_iterations = 0;
-  unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0, jfo_band_rounds = 0;
+  unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0, jfo_band_rounds = 0,
+               jfo_low_rank_updates = 0;
   unsigned int current_coarsening = 0;
   double cavitation_residual = 0;
   unsigned int last_iterations = 0;

@@ -32,6 +32,10 @@ public:
   /// x = A^-1 b with the last factorisation.
   void solve(const dealii::TrilinosWrappers::MPI::Vector &b,
              dealii::TrilinosWrappers::MPI::Vector &x);
+  /// X = A^-1 X for `m` right-hand sides at once (one rank; X holds n x m values column by
+  /// column, n the matrix size). MUMPS solves the block in one call (its triangular solves then
+  /// work on blocks of columns), where Amesos would call it once per column.
+  void solve_block(std::vector<double> &X, unsigned int m);
   void clear();
   bool initialized() const { return static_cast<bool>(solver); }
   /// Factorisations that reused the symbolic analysis of an earlier one.
@@ -47,6 +51,32 @@ private:
   unsigned int reused_symbolic = 0;
   const char *package = "";
 };
+
+/// Outcome of solve_column_update.
+enum class LowRankSolve
+{
+  solved,          // x is the solution, its backward error within the bound
+  ill_conditioned, // the capacitance matrix is (nearly) singular: x not set
+  inaccurate       // the residual check failed: x not set
+};
+
+/// x = A1^-1 b by the Sherman-Morrison-Woodbury formula, where A1 differs from the factorised A0
+/// in the columns `columns` only: A1 = A0 + U E^T, U (n x k, column by column) the differences
+/// A1(:, columns) - A0(:, columns) (moved in: its storage takes the block solve), E those unit
+/// columns. One block solve with A0's factors for
+/// [b U] (k + 1 columns) and the k x k capacitance system C = I + E^T A0^-1 U, then
+/// x = y - Z C^-1 E^T y (y = A0^-1 b, Z = A0^-1 U). det A1 = det A0 det C, so A1 is singular
+/// where C is: refused (ill_conditioned) when 1 / ((1 + |E^T Z|_1) |C^-1|_1), C's reciprocal
+/// condition number against the terms summed into it, is below
+/// `min_rcond`. The answer is accepted only if its normwise backward error for A1 (given as
+/// `matrix`), |b - A1 x|_inf / (|A1|_inf |x|_inf + |b|_inf), is at most `max_backward_error`
+/// (else inaccurate). One rank; b, x: the n values in order. `rcond`, `backward_error`: what
+/// was found (NaN where not computed).
+LowRankSolve solve_column_update(SparseDirect &lu,
+                                 const dealii::TrilinosWrappers::SparseMatrix &matrix,
+                                 const std::vector<unsigned int> &columns, std::vector<double> U,
+                                 const double *b, double *x, double min_rcond,
+                                 double max_backward_error, double &rcond, double &backward_error);
 
 /// The dofs of `marked` (flags by global index) and their neighbours in the matrix graph, `layers`
 /// times (serial matrix).
