@@ -1,12 +1,16 @@
 #include <sealfe/film/film_output.h>
+#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/io/vtu_piece.h>
 
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -50,42 +54,66 @@ public:
   void evaluate_scalar_field(const DataPostprocessorInputs::Scalar<2> &in,
                              std::vector<Vector<double>> &out) const override
   {
-    std::vector<double> liquid(in.evaluation_points.size(), 1.0);
-    if (void_fraction != nullptr && flux)
+    Vector<double> nodal_void;
+    if (needs_void_fraction())
     {
       AssertDimension(in.evaluation_points.size(), shape_values.size());
-      const auto cell = in.template get_cell<2>();
-      Vector<double> nodal_void(shape_values[0].size());
-      cell->get_dof_values(*void_fraction, nodal_void);
-      for (unsigned int q = 0; q < liquid.size(); ++q)
-        for (unsigned int k = 0; k < nodal_void.size(); ++k)
-          liquid[q] -= nodal_void[k] * shape_values[q][k];
+      nodal_void.reinit(shape_values[0].size());
+      in.template get_cell<2>()->get_dof_values(*void_fraction, nodal_void);
     }
+    std::array<double, max_components> values;
     for (unsigned int q = 0; q < in.evaluation_points.size(); ++q)
     {
-      // in a JFO cavity the pressure part vanishes (p = p_cav) and the Couette part carries the
-      // liquid fraction: the flux stream tracers follow is the flux that is conserved
-      const ReynoldsSolver::LocalFilm f = film(in.evaluation_points[q]);
-      unsigned int k = 0;
-      if (thickness)
-        out[q](k++) = f.h;
-      if (flux)
-      {
-        const Tensor<1, 2> q_flux = -(f.K * in.solution_gradients[q]) + liquid[q] * f.c;
-        out[q](k++) = q_flux[0];
-        out[q](k++) = q_flux[1];
-      }
-      if (rough)
-      {
-        out[q](k++) = f.h_T;
-        out[q](k++) = f.phi_r;
-        out[q](k++) = f.phi_theta;
-        out[q](k++) = f.phi_s;
-      }
-      if (contact)
-        out[q](k++) = f.contact_pressure;
+      const double liquid = needs_void_fraction() ? liquid_fraction(nodal_void, q) : 1.0;
+      const unsigned int n =
+          point_values(in.evaluation_points[q], flux ? in.solution_gradients[q] : Tensor<1, 2>(),
+                       liquid, values.data());
+      for (unsigned int k = 0; k < n; ++k)
+        out[q](k) = values[k];
     }
   }
+  /// The fields at the output point x from the pressure gradient there and the liquid fraction
+  /// (1 - v: 1 outside a JFO cavity); writes get_names().size() values to `out` and returns
+  /// their number. Both routes to the patches (DataOut and the polar rows) compute them here.
+  unsigned int point_values(const Point<2> &x, const Tensor<1, 2> &grad_p, const double liquid,
+                            double *out) const
+  {
+    // in a JFO cavity the pressure part vanishes (p = p_cav) and the Couette part carries the
+    // liquid fraction: the flux stream tracers follow is the flux that is conserved
+    const ReynoldsSolver::LocalFilm f = film(x);
+    unsigned int k = 0;
+    if (thickness)
+      out[k++] = f.h;
+    if (flux)
+    {
+      const Tensor<1, 2> q_flux = -(f.K * grad_p) + liquid * f.c;
+      out[k++] = q_flux[0];
+      out[k++] = q_flux[1];
+    }
+    if (rough)
+    {
+      out[k++] = f.h_T;
+      out[k++] = f.phi_r;
+      out[k++] = f.phi_theta;
+      out[k++] = f.phi_s;
+    }
+    if (contact)
+      out[k++] = f.contact_pressure;
+    return k;
+  }
+  /// Whether point_values needs the liquid fraction (flux with JFO), and the solution gradient.
+  bool needs_void_fraction() const { return void_fraction != nullptr && flux; }
+  bool needs_gradients() const { return flux; }
+  const TrilinosWrappers::MPI::Vector &void_fraction_vector() const { return *void_fraction; }
+  /// 1 - v at output point q (the lattice (i/n, j/n), i fastest) from the cell's nodal v.
+  double liquid_fraction(const Vector<double> &nodal_void, const unsigned int q) const
+  {
+    double liquid = 1.0;
+    for (unsigned int k = 0; k < nodal_void.size(); ++k)
+      liquid -= nodal_void[k] * shape_values[q][k];
+    return liquid;
+  }
+  static constexpr unsigned int max_components = 8;
   std::vector<std::string> get_names() const override
   {
     std::vector<std::string> names;
@@ -134,6 +162,144 @@ public:
     return output::VtuFields::from(get_dataset_names(), get_nonscalar_data_ranges());
   }
 };
+
+/// One data set of the output, in the order DataOut numbers them: the nodal `vector`
+/// interpolated to the output points under `name`, or (`postprocessed`) the components of the
+/// postprocessor with `vector` as the pressure.
+struct DataSet
+{
+  const TrilinosWrappers::MPI::Vector *vector;
+  std::string name;
+  bool postprocessed = false;
+};
+
+/// The point data of `sets` (the postprocessor's vectors from its component interpretation).
+output::VtuFields vtu_fields_of(const std::vector<DataSet> &sets, const FilmPostprocessor &film)
+{
+  std::vector<std::string> names;
+  std::vector<std::tuple<unsigned int, unsigned int, std::string,
+                         DataComponentInterpretation::DataComponentInterpretation>>
+      ranges;
+  for (const DataSet &set : sets)
+    if (!set.postprocessed)
+      names.push_back(set.name);
+    else
+    {
+      const auto film_names = film.get_names();
+      const auto kinds = film.get_data_component_interpretation();
+      const unsigned int first = names.size();
+      for (unsigned int k = 0; k < film_names.size(); ++k)
+      {
+        if (kinds[k] == DataComponentInterpretation::component_is_part_of_vector &&
+            (k == 0 || kinds[k - 1] != kinds[k] || film_names[k - 1] != film_names[k]))
+          ranges.emplace_back(first + k, first + k + 1, film_names[k], kinds[k]);
+        names.push_back(film_names[k]);
+      }
+    }
+  return output::VtuFields::from(names, ranges);
+}
+
+/// Fills `patch` as DataOut::build_patches(mapping, k, curved_inner_cells) does for `cell`
+/// (the (k + 1)^2 lattice points (i/k, j/k), i fastest, their mapped positions as the last two
+/// rows of the data), from `values` reinitialised on the cell with that lattice as quadrature:
+/// FEValues, or PolarCellValues (the row's first cell turned).
+template <class Values>
+void fill_patch(const Values &values, const DoFHandler<2>::active_cell_iterator &cell,
+                const std::vector<DataSet> &sets, const FilmPostprocessor &film,
+                const unsigned int n_sets, const unsigned int degree, const unsigned int n_q,
+                DataOutBase::Patch<2, 2> &patch)
+{
+  const unsigned int n = values.get_fe().n_dofs_per_cell();
+  patch.n_subdivisions = degree;
+  patch.reference_cell = ReferenceCells::Quadrilateral;
+  patch.points_are_available = true;
+  for (unsigned int v = 0; v < 4; ++v)
+    patch.vertices[v] = cell->vertex(v);
+  patch.data.reinit(n_sets + 2, n_q);
+  Vector<double> nodal(n), nodal_void, pressure(n);
+  const bool film_used =
+      std::any_of(sets.begin(), sets.end(), [](const DataSet &d) { return d.postprocessed; });
+  if (film_used && film.needs_void_fraction())
+  {
+    nodal_void.reinit(n);
+    cell->get_dof_values(film.void_fraction_vector(), nodal_void);
+  }
+  std::array<double, FilmPostprocessor::max_components> film_values;
+  unsigned int row = 0;
+  for (const DataSet &set : sets)
+  {
+    if (!set.postprocessed)
+    {
+      cell->get_dof_values(*set.vector, nodal);
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        double u = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          u += nodal[i] * values.shape_value(i, q);
+        patch.data(row, q) = u;
+      }
+      ++row;
+      continue;
+    }
+    // the postprocessor's fields, from the pressure gradient (the solution is the pressure)
+    if (film.needs_gradients())
+      cell->get_dof_values(*set.vector, pressure);
+    unsigned int n_film = 0;
+    for (unsigned int q = 0; q < n_q; ++q)
+    {
+      Tensor<1, 2> grad_p;
+      if (film.needs_gradients())
+        for (unsigned int i = 0; i < n; ++i)
+          grad_p += pressure[i] * values.shape_grad(i, q);
+      const double liquid = nodal_void.size() ? film.liquid_fraction(nodal_void, q) : 1.0;
+      n_film = film.point_values(values.quadrature_point(q), grad_p, liquid, film_values.data());
+      for (unsigned int k = 0; k < n_film; ++k)
+        patch.data(row + k, q) = film_values[k];
+    }
+    row += n_film;
+  }
+  AssertDimension(row, n_sets);
+  for (unsigned int q = 0; q < n_q; ++q)
+    for (unsigned int d = 0; d < 2; ++d)
+      patch.data(n_sets + d, q) = values.quadrature_point(q)[d];
+}
+
+/// The patches of build_patches(mapping, k, curved_inner_cells) on the built-in annulus, where
+/// every cell of a radial row is the row's first cell turned about the axis: the mapped output
+/// points and the shape gradients there come from one FEValues evaluation per row
+/// (PolarCellValues), which removes the mapping at the 9 (k = 2) output points of every cell,
+/// most of build_patches' time. A cell PolarCellValues cannot prove to be such a rotation (its
+/// vertices checked; the mesh of a surface-feature layout, say) gets FEValues, i.e. what
+/// build_patches computes for it. The values equal build_patches' to the round-off of the
+/// rotation (tests/regression/film_output_patches.cc).
+std::vector<DataOutBase::Patch<2, 2>>
+polar_patches(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping,
+              const unsigned int degree, const std::vector<DataSet> &sets,
+              const FilmPostprocessor &film, const unsigned int n_sets)
+{
+  const QIterated<2> lattice(QTrapezoid<1>(), degree); // DataOut's output points
+  const FiniteElement<2> &fe = dof_handler.get_fe();
+  PolarCellValues polar(mapping, fe, lattice);
+  FEValues<2> fe_values(mapping, fe, lattice,
+                        update_values | update_gradients | update_quadrature_points);
+  std::vector<DataOutBase::Patch<2, 2>> patches;
+  patches.reserve(dof_handler.get_triangulation().n_active_cells()); // at least the owned
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      patches.emplace_back();
+      DataOutBase::Patch<2, 2> &patch = patches.back();
+      patch.patch_index = patches.size() - 1;
+      if (polar.reinit(cell))
+        fill_patch(polar, cell, sets, film, n_sets, degree, lattice.size(), patch);
+      else
+      {
+        fe_values.reinit(cell);
+        fill_patch(fe_values, cell, sets, film, n_sets, degree, lattice.size(), patch);
+      }
+    }
+  return patches;
+}
 
 /// Writes `content` to `name`, with a one-line reason if the file system refuses.
 void write_file(const std::string &name, const std::string &content)
@@ -235,12 +401,11 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
       jfo && write_flux ? &s.locally_relevant_void : nullptr, fields.film_thickness, write_flux,
       !s.flow_factors.is_smooth() && fields.flow_factors,
       s.contact.enabled() && fields.contact_pressure);
-  FieldDataOut data_out;
-  data_out.attach_dof_handler(s.dof_handler);
+  std::vector<DataSet> sets;
   if (fields.pressure)
-    data_out.add_data_vector(s.locally_relevant_solution, "pressure");
+    sets.push_back({&s.locally_relevant_solution, "pressure"});
   if (!postprocessor.empty())
-    data_out.add_data_vector(s.locally_relevant_solution, postprocessor);
+    sets.push_back({&s.locally_relevant_solution, "", true});
   // Liquid fraction s = 1 - v (nodal, so exact at the nodes) and an indicator of the cavitated
   // region (1 where p <= p_cav or s < 1).
   const bool write_liquid = jfo && fields.liquid_fraction;
@@ -265,29 +430,51 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
     liquid_ghosted = liquid;
     cavitated_ghosted = cavitated;
     if (write_liquid)
-      data_out.add_data_vector(liquid_ghosted, "liquid_fraction");
+      sets.push_back({&liquid_ghosted, "liquid_fraction"});
     if (write_cavitated)
-      data_out.add_data_vector(cavitated_ghosted, "cavitated");
+      sets.push_back({&cavitated_ghosted, "cavitated"});
   }
-  // one patch of the element's degree per cell, written as a Lagrange cell
+  // One patch of the element's degree per cell, written as a Lagrange cell
   // (VTK_LAGRANGE_QUADRILATERAL): ParaView shows the curved element and its degree instead of
-  // k^2 straight sub-quads
-  data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
+  // k^2 straight sub-quads. On the built-in annulus the patches come from the polar rows
+  // (polar_patches); deal.II's build_patches makes them for a mesh file, or with polar_rows
+  // false (the tests compare the two routes).
+  FieldDataOut data_out;
+  std::vector<DataOutBase::Patch<2, 2>> polar;
+  const bool use_polar_rows = s.mesh_parameters.mesh_file.empty() && s.polar_rows;
+  output::VtuFields vtu_fields;
+  if (use_polar_rows)
+  {
+    vtu_fields = vtu_fields_of(sets, postprocessor);
+    polar = polar_patches(s.dof_handler, *s.mapping, s.polynomial_degree, sets, postprocessor,
+                          vtu_fields.names.size());
+  }
+  else
+  {
+    data_out.attach_dof_handler(s.dof_handler);
+    for (const DataSet &set : sets)
+      if (set.postprocessed)
+        data_out.add_data_vector(*set.vector, postprocessor);
+      else
+        data_out.add_data_vector(*set.vector, set.name);
+    data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
+    vtu_fields = data_out.fields();
+  }
+  const std::vector<DataOutBase::Patch<2, 2>> &patches =
+      use_polar_rows ? polar : data_out.get_patches();
   // Each rank writes its own piece, LZ4-compressed raw binary (output::write_vtu_piece, several
   // times faster than deal.II's base64 writer), with `rank` as cell data (one value per cell)
   const unsigned int rank = Utilities::MPI::this_mpi_process(s.mpi_communicator);
   const std::string stem = basename + "_" + Utilities::int_to_string(counter, 4);
   auto piece_name = [&stem](const unsigned int r)
   { return stem + "." + std::to_string(r) + ".vtu"; };
-  const output::VtuFields vtu_fields = data_out.fields();
   {
     const std::string name = directory + "/" + piece_name(rank);
     std::ofstream piece(name, std::ios::binary);
     if (!piece)
       throw std::runtime_error("cannot write the field file " + name);
-    output::write_vtu_piece(piece, data_out.get_patches(), vtu_fields,
-                            {{"rank", std::vector<int>(data_out.get_patches().size(), int(rank))}},
-                            frame_angle);
+    output::write_vtu_piece(piece, patches, vtu_fields,
+                            {{"rank", std::vector<int>(patches.size(), int(rank))}}, frame_angle);
     if (!piece.flush())
       throw std::runtime_error("cannot write the field file " + name);
   }

@@ -34,7 +34,10 @@ struct FieldSelection
 };
 
 /// Write the fields of the last run() of `solver` into `directory` (which must exist); returns
-/// the PVD file name, "solution.pvd". Collective over the solver's communicator.
+/// the PVD file name, "solution.pvd". Collective over the solver's communicator. On the built-in
+/// annulus the output points and their shape values come from one FEValues evaluation per radial
+/// row (PolarCellValues), as in the assembly; with a mesh file or `solver.polar_rows` false,
+/// from deal.II's DataOut::build_patches (the same values to round-off).
 std::string write_film_output(const ReynoldsSolver &solver, const std::string &directory,
                               const FieldSelection &fields = FieldSelection());
 

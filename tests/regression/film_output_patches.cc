@@ -1,0 +1,144 @@
+// The field output on the built-in annulus fills its patches from the radial rows (one FEValues
+// evaluation per row, the other cells of the row turned: PolarCellValues) instead of deal.II's
+// DataOut::build_patches. Both routes must write the same VTU: the same points, cells and every
+// point array, read back through VTK, to the round-off of the Float32 arrays. The case has every
+// field: a tilted, wavy film with rough faces (Patir & Cheng flow factors in the flux and the
+// expected gap, a rougher rotor for a shear flow factor, GW/CEB contact pressure) and JFO
+// cavitation with a cavity, whose void fraction enters the flux. A wrong rotation of the points or
+// of the gradients moves a point by a fraction of the radius and changes h and the flux at it by
+// O(1).
+#include <sealfe/film/film_output.h>
+#include <sealfe/film/reynolds_solver.h>
+
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+using namespace sealfe;
+
+namespace
+{
+vtkSmartPointer<vtkXMLUnstructuredGridReader> read_piece(const fs::path &dir)
+{
+  auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+  reader->SetFileName((dir / "solution_0000.0.vtu").c_str());
+  reader->Update();
+  return reader;
+}
+
+/// Largest |a - b| over the components of two arrays of equal shape, and max |a|.
+std::pair<double, double> difference(vtkDataArray *a, vtkDataArray *b)
+{
+  double diff = 0, scale = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      diff = std::max(diff, std::abs(a->GetComponent(i, c) - b->GetComponent(i, c)));
+      scale = std::max(scale, std::abs(a->GetComponent(i, c)));
+    }
+  return {diff, scale};
+}
+
+/// Tilted, wavy, rough faces with asperity contact and a JFO cavity.
+FilmSettings every_field_settings(const unsigned int degree)
+{
+  FilmSettings s;
+  s.cavitation.model = Cavitation::jfo;
+  s.geometry.coning = 0;
+  s.geometry.wave_amplitude = 0.4e-6;
+  s.geometry.wave_number = 3;
+  s.geometry.tilt = 0.2 * s.geometry.clearance / s.geometry.outer_radius;
+  s.geometry.tilt_angle = 0.3;
+  s.conditions.inner_pressure = 1e5;
+  s.conditions.outer_pressure = 1e5;
+  s.flow_factors = FlowFactors(FlowFactors::Model::patir_cheng, 0.2e-6, 3.0, 0.8);
+  AsperityContactParameters contact;
+  contact.composite_roughness = 0.2e-6;
+  s.contact = AsperityContact(AsperityContact::Model::gw_ceb, contact);
+  s.polynomial_degree = degree;
+  s.mesh.radial_cells = 4;
+  s.mesh.circumferential_cells = 48;
+  s.estimate_error = false;
+  s.linear_solver = FilmSettings::LinearSolver::direct;
+  return s;
+}
+} // namespace
+
+TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
+{
+  const fs::path root = fs::temp_directory_path() / "sealfe_film_output_patches";
+  for (const unsigned int degree : {1u, 2u, 3u})
+  {
+    ReynoldsSolver s(every_field_settings(degree), MPI_COMM_WORLD);
+    const FilmLoads loads = s.run();
+    ASSERT_GT(loads.cavitated_fraction, 0.02) << "degree " << degree; // the case has a cavity
+    const fs::path polar = root / ("polar" + std::to_string(degree)),
+                   generic = root / ("generic" + std::to_string(degree));
+    for (const fs::path &dir : {polar, generic})
+    {
+      fs::remove_all(dir);
+      fs::create_directories(dir);
+    }
+    write_film_output(s, polar.string());
+    s.polar_rows = false; // the same solution through DataOut::build_patches
+    write_film_output(s, generic.string());
+
+    const auto reader_a = read_piece(polar), reader_b = read_piece(generic);
+    vtkUnstructuredGrid *a = reader_a->GetOutput(), *b = reader_b->GetOutput();
+    const std::size_t n_cells = s.mesh().radial_cells * s.mesh().circumferential_cells;
+    ASSERT_EQ(std::size_t(a->GetNumberOfCells()), n_cells);
+    ASSERT_EQ(a->GetNumberOfCells(), b->GetNumberOfCells());
+    ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+    ASSERT_EQ(std::size_t(a->GetNumberOfPoints()), n_cells * (degree + 1) * (degree + 1));
+
+    // Every array is Float32: the two routes compute the same doubles up to the round-off of
+    // the rotation (~1e-12 relative, tests/validation/polar_cell_values.cc), so their floats
+    // differ by at most one unit in the last place, 2^-23 |x| <= 2^-23 max |x|; twice that.
+    const double float_tolerance = 2 * std::ldexp(1.0, -23);
+    const auto [point_diff, point_scale] =
+        difference(a->GetPoints()->GetData(), b->GetPoints()->GetData());
+    EXPECT_LE(point_diff, float_tolerance * point_scale) << "degree " << degree;
+
+    vtkPointData *pa = a->GetPointData(), *pb = b->GetPointData();
+    ASSERT_EQ(pa->GetNumberOfArrays(), pb->GetNumberOfArrays());
+    // every field the model has: pressure, h, flux, the four Patir & Cheng quantities, contact
+    // pressure, liquid fraction, cavitated
+    EXPECT_EQ(pa->GetNumberOfArrays(), 10) << "degree " << degree;
+    for (int k = 0; k < pa->GetNumberOfArrays(); ++k)
+    {
+      const std::string name = pa->GetArrayName(k);
+      vtkDataArray *x = pa->GetArray(name.c_str()), *y = pb->GetArray(name.c_str());
+      ASSERT_TRUE(x && y) << name;
+      ASSERT_EQ(x->GetNumberOfComponents(), y->GetNumberOfComponents()) << name;
+      ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples()) << name;
+      const auto [diff, scale] = difference(x, y);
+      EXPECT_LE(diff, float_tolerance * scale) << name << ", degree " << degree;
+      std::cout << "degree " << degree << ", " << name << ": max |difference| " << diff
+                << " of max |value| " << scale << "\n";
+    }
+    // the void fraction is present and enters the flux: a cavity in the liquid fraction
+    vtkDataArray *liquid = pa->GetArray("liquid_fraction");
+    ASSERT_TRUE(liquid);
+    double min_liquid = 1;
+    for (vtkIdType i = 0; i < liquid->GetNumberOfTuples(); ++i)
+      min_liquid = std::min(min_liquid, liquid->GetTuple1(i));
+    EXPECT_LT(min_liquid, 0.99) << "degree " << degree;
+
+    vtkDataArray *rank_a = a->GetCellData()->GetArray("rank"),
+                 *rank_b = b->GetCellData()->GetArray("rank");
+    ASSERT_TRUE(rank_a && rank_b);
+    EXPECT_EQ(difference(rank_a, rank_b).first, 0.0);
+  }
+  fs::remove_all(root);
+}
