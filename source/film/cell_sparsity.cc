@@ -96,8 +96,10 @@ void CellSparsity::reinit(TrilinosWrappers::SparseMatrix &matrix, const IndexSet
   AssertThrow(ierr == 0, ExcTrilinosError(ierr));
   ierr = graph.OptimizeStorage();
   AssertThrow(ierr == 0, ExcTrilinosError(ierr));
-  const Epetra_CrsMatrix zero(Copy, graph);
-  matrix.reinit(zero, false);
+  // the matrix only passes the graph and maps: in View mode it allocates no values (the
+  // deal.II matrix allocates its own, zeroed, from the graph)
+  const Epetra_CrsMatrix pattern(View, graph);
+  matrix.reinit(pattern, false);
 }
 
 void CellSparsity::add(const TrilinosWrappers::SparseMatrix &matrix,
