@@ -43,12 +43,16 @@ using VectorType = FilmMultigrid::VectorType;
 using MatrixType = TrilinosWrappers::SparseMatrix;
 
 /// The locally owned dofs of one level grouped into radial lines (dofs at one angle), each
-/// sorted by radius. After the numbering by lines (number_by_lines) line k is the owned indices
-/// start[k] .. start[k+1] (positions within the owned set); `order` is the sorted position of
-/// each owned dof before that numbering.
+/// sorted by radius: line k is the positions start[k] .. start[k+1] of that order; `order` is
+/// the position of each owned dof (its index within the owned set), `at` the owned dof at each
+/// position, empty where the dofs are numbered by lines (the active dofs,
+/// number_by_radial_lines: the position is the index).
 struct RadialLines
 {
-  std::vector<unsigned int> order, start;
+  std::vector<unsigned int> order, start, at;
+  unsigned int size() const { return order.size(); }
+  /// the owned index at line position p
+  unsigned int index(const unsigned int p) const { return at.empty() ? p : at[p]; }
 };
 
 /// The radial lines of the owned dofs of `level` (numbers::invalid_unsigned_int: the active
@@ -122,6 +126,14 @@ std::vector<types::global_dof_index> numbers_by_lines(const IndexSet &owned,
   return numbers;
 }
 
+/// The lines of a level that keeps deal.II's numbering: the owned dof at each line position.
+void index_by_position(RadialLines &lines)
+{
+  lines.at.resize(lines.order.size());
+  for (unsigned int i = 0; i < lines.order.size(); ++i)
+    lines.at[lines.order[i]] = i;
+}
+
 /// Line Jacobi, x = B^-1 b with B the block diagonal of A over the radial lines (a banded
 /// Cholesky factorisation LDL^T of each line block): the preconditioner the Chebyshev smoother
 /// is wrapped around. The cells of the annulus are long in theta (up to ~45:1 at Ntheta/Nr = 1),
@@ -138,7 +150,12 @@ public:
   {
     lines = &lines_in;
     const Epetra_CrsMatrix &E = A.trilinos_matrix();
-    const unsigned int n = lines->order.size();
+    const unsigned int n = lines->size();
+    // the band and the factors are kept by line position (the owned index where the dofs are
+    // numbered by lines; else the vectors are gathered into that order for the solve)
+    const bool permuted = !lines->at.empty();
+    if (permuted)
+      work.resize(n);
     std::vector<unsigned int> line_of(n);
     for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
     {
@@ -149,20 +166,24 @@ public:
     std::vector<int> row_of_column(E.ColMap().NumMyElements());
     for (unsigned int c = 0; c < row_of_column.size(); ++c)
       row_of_column[c] = E.RowMap().LID(E.ColMap().GID(c));
-    // f(i, j, A_ij) for the entries of A that couple two dofs of one line
+    // f(p, q, A_ij) for the entries of A that couple two dofs i, j of one line, at the line
+    // positions p, q
     auto for_each_line_entry = [&](const auto &f)
     {
-      for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int p = 0; p < n; ++p)
       {
         int count;
         double *values;
         int *columns;
-        E.ExtractMyRowView(i, count, values, columns);
+        E.ExtractMyRowView(int(lines->index(p)), count, values, columns);
         for (int c = 0; c < count; ++c)
         {
           const int j = row_of_column[columns[c]];
-          if (j >= 0 && line_of[j] == line_of[i])
-            f(i, unsigned(j), values[c]);
+          if (j < 0)
+            continue;
+          const unsigned int q = permuted ? lines->order[j] : unsigned(j);
+          if (line_of[q] == line_of[p])
+            f(p, q, values[c]);
         }
       }
     };
@@ -205,23 +226,40 @@ public:
 
   void vmult(VectorType &dst, const VectorType &src) const
   {
-    switch (bandwidth)
+    if (lines->at.empty())
+      solve(dst.begin(), src.begin());
+    else
     {
-    case 1:
-      solve<1>(dst.begin(), src.begin());
-      break;
-    case 2:
-      solve<2>(dst.begin(), src.begin());
-      break;
-    case 3:
-      solve<3>(dst.begin(), src.begin());
-      break;
-    default:
-      solve<0>(dst.begin(), src.begin());
+      // in line order, then back (the same operations as on a level numbered by lines)
+      const double *b = src.begin();
+      for (unsigned int p = 0; p < work.size(); ++p)
+        work[p] = b[lines->at[p]];
+      solve(work.data(), work.data());
+      double *x = dst.begin();
+      for (unsigned int p = 0; p < work.size(); ++p)
+        x[lines->at[p]] = work[p];
     }
   }
 
 private:
+  void solve(double *x, const double *b) const
+  {
+    switch (bandwidth)
+    {
+    case 1:
+      solve<1>(x, b);
+      break;
+    case 2:
+      solve<2>(x, b);
+      break;
+    case 3:
+      solve<3>(x, b);
+      break;
+    default:
+      solve<0>(x, b);
+    }
+  }
+
   /// x = (L D L^T)^-1 b line by line: L y = b forward, then x = D^-1 y - L^T x backward (the
   /// scaling by D^-1 done in the backward sweep, the same operations in the same order as three
   /// separate sweeps). B: the bandwidth as a constant (the rows past the first B of a line
@@ -269,6 +307,7 @@ private:
   const RadialLines *lines = nullptr;
   unsigned int bandwidth = 0;
   std::vector<double> band;
+  mutable std::vector<double> work; // the vector in line order (a level not numbered by lines)
 };
 using Smoother = PreconditionChebyshev<MatrixType, VectorType, LineJacobi>;
 /// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator
@@ -590,18 +629,16 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   const MPI_Comm comm = dof_handler->get_communicator();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
 
-  // Every level numbered by radial lines (as the active dofs are, number_by_radial_lines): the
-  // line blocks of the smoother are contiguous and the level matrices banded.
+  // The radial lines of every level (the smoother's line blocks).
   data->lines.resize(n_levels);
   // The finest level is the system itself where every locally owned active cell is on it (a
   // globally refined mesh) and the active dofs are numbered by lines: its operator is the system
   // matrix, its vectors the system's, its lines the active ones, and the transfer takes the
-  // active numbers of its cells as rows. Its level dofs are then never used and are not
-  // renumbered (deal.II's renumbering of that level was most of the level numbering time at
-  // 1.05e6 dofs, doc/performance.md). Else, or where the transfer cannot reach every owned
-  // active dof from a parent cell this rank sees (several ranks), the finest level is numbered
-  // by its own lines and assembled like the others, with MGTransferPrebuilt. Each test is
-  // reduced over the ranks before its branch: every rank must take the same one (collectives).
+  // active numbers of its cells as rows: its level dofs are never used. Else, or where the
+  // transfer cannot reach every owned active dof from a parent cell this rank sees (several
+  // ranks), the finest level gets its own lines and is assembled like the others, with
+  // MGTransferPrebuilt. Each test is reduced over the ranks before its branch: every rank must
+  // take the same one (collectives).
   bool fine_active = !active_line_start.empty() &&
                      active_line_start.back() == dof_handler->locally_owned_dofs().n_elements();
   if (fine_active)
@@ -612,33 +649,28 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
         break;
       }
   fine_active = Utilities::MPI::min(fine_active ? 1 : 0, comm) == 1;
+  // The levels keep deal.II's numbering: the smoother gathers each vector into line order
+  // (LineJacobi::vmult). deal.II's renumbering of a level costs a pass over the whole
+  // hierarchy (~0.02 s per level at 1.05e6 dofs, whatever the level's size: 0.14 s for the 7
+  // coarse levels, doc/performance.md); the gather costs a pass over the level's vector.
   auto number_level = [&](const unsigned int l)
   {
     data->lines[l] = find_radial_lines(*dof_handler, *mapping, l);
-    dof_handler->renumber_dofs(
-        l, numbers_by_lines(dof_handler->locally_owned_mg_dofs(l), data->lines[l]));
+    index_by_position(data->lines[l]);
   };
   for (unsigned int l = 0; l < n_levels; ++l)
     if (l < fine || !fine_active)
       number_level(l);
   lap("level numbering by lines");
-  auto constrain_boundaries = [&]()
-  {
-    data->constrained_dofs.initialize(*dof_handler);
-    data->constrained_dofs.make_zero_boundary_constraints(
-        *dof_handler, std::set<types::boundary_id>(dirichlet_ids.begin(), dirichlet_ids.end()));
-  };
-  constrain_boundaries();
+  data->constrained_dofs.initialize(*dof_handler);
+  data->constrained_dofs.make_zero_boundary_constraints(
+      *dof_handler, std::set<types::boundary_id>(dirichlet_ids.begin(), dirichlet_ids.end()));
   lap("level boundary dofs");
 
   data->fine_is_system =
       fine_active && data->level_transfer.build(*dof_handler, data->constrained_dofs, true);
   if (fine_active && !data->fine_is_system)
-  {
-    // the finest level's own numbering after all (and its boundary dofs in that numbering)
-    number_level(fine);
-    constrain_boundaries();
-  }
+    number_level(fine); // the finest level's own lines after all
   if (data->fine_is_system)
   {
     data->lines[fine].order.resize(dof_handler->locally_owned_dofs().n_elements());
@@ -792,12 +824,13 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       VectorType x(A.locally_owned_range_indices(), A.get_mpi_communicator()), b(x);
       std::uint64_t state =
           88172645463325252ull + A.locally_owned_range_indices().nth_index_in_set(0);
-      for (auto &v : b)
+      // in line order: the same start on a level numbered by lines or not
+      for (unsigned int p = 0; p < data->lines[l].size(); ++p)
       {
         state ^= state << 13; // xorshift64
         state ^= state >> 7;
         state ^= state << 17;
-        v = double(state >> 11) / double(1ull << 53) - 0.5;
+        b.begin()[data->lines[l].index(p)] = double(state >> 11) / double(1ull << 53) - 0.5;
       }
       IterationNumberControl control(eigenvalue_iterations, 1e-300, false, false);
       SolverCG<VectorType> cg(control);
