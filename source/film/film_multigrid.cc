@@ -1,3 +1,4 @@
+#include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/film_multigrid.h>
 #include <sealfe/film/lap_timer.h>
 #include <sealfe/film/polar_cell_values.h>
@@ -42,12 +43,16 @@ using VectorType = FilmMultigrid::VectorType;
 using MatrixType = TrilinosWrappers::SparseMatrix;
 
 /// The locally owned dofs of one level grouped into radial lines (dofs at one angle), each
-/// sorted by radius. After the numbering by lines (number_by_lines) line k is the owned indices
-/// start[k] .. start[k+1] (positions within the owned set); `order` is the sorted position of
-/// each owned dof before that numbering.
+/// sorted by radius: line k is the positions start[k] .. start[k+1] of that order; `order` is
+/// the position of each owned dof (its index within the owned set), `at` the owned dof at each
+/// position, empty where the dofs are numbered by lines (the active dofs,
+/// number_by_radial_lines: the position is the index).
 struct RadialLines
 {
-  std::vector<unsigned int> order, start;
+  std::vector<unsigned int> order, start, at;
+  unsigned int size() const { return order.size(); }
+  /// the owned index at line position p
+  unsigned int index(const unsigned int p) const { return at.empty() ? p : at[p]; }
 };
 
 /// The radial lines of the owned dofs of `level` (numbers::invalid_unsigned_int: the active
@@ -121,6 +126,14 @@ std::vector<types::global_dof_index> numbers_by_lines(const IndexSet &owned,
   return numbers;
 }
 
+/// The lines of a level that keeps deal.II's numbering: the owned dof at each line position.
+void index_by_position(RadialLines &lines)
+{
+  lines.at.resize(lines.order.size());
+  for (unsigned int i = 0; i < lines.order.size(); ++i)
+    lines.at[lines.order[i]] = i;
+}
+
 /// Line Jacobi, x = B^-1 b with B the block diagonal of A over the radial lines (a banded
 /// Cholesky factorisation LDL^T of each line block): the preconditioner the Chebyshev smoother
 /// is wrapped around. The cells of the annulus are long in theta (up to ~45:1 at Ntheta/Nr = 1),
@@ -137,7 +150,12 @@ public:
   {
     lines = &lines_in;
     const Epetra_CrsMatrix &E = A.trilinos_matrix();
-    const unsigned int n = lines->order.size();
+    const unsigned int n = lines->size();
+    // the band and the factors are kept by line position (the owned index where the dofs are
+    // numbered by lines; else the vectors are gathered into that order for the solve)
+    const bool permuted = !lines->at.empty();
+    if (permuted)
+      work.resize(n);
     std::vector<unsigned int> line_of(n);
     for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
     {
@@ -148,20 +166,24 @@ public:
     std::vector<int> row_of_column(E.ColMap().NumMyElements());
     for (unsigned int c = 0; c < row_of_column.size(); ++c)
       row_of_column[c] = E.RowMap().LID(E.ColMap().GID(c));
-    // f(i, j, A_ij) for the entries of A that couple two dofs of one line
+    // f(p, q, A_ij) for the entries of A that couple two dofs i, j of one line, at the line
+    // positions p, q
     auto for_each_line_entry = [&](const auto &f)
     {
-      for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int p = 0; p < n; ++p)
       {
         int count;
         double *values;
         int *columns;
-        E.ExtractMyRowView(i, count, values, columns);
+        E.ExtractMyRowView(int(lines->index(p)), count, values, columns);
         for (int c = 0; c < count; ++c)
         {
           const int j = row_of_column[columns[c]];
-          if (j >= 0 && line_of[j] == line_of[i])
-            f(i, unsigned(j), values[c]);
+          if (j < 0)
+            continue;
+          const unsigned int q = permuted ? lines->order[j] : unsigned(j);
+          if (line_of[q] == line_of[p])
+            f(p, q, values[c]);
         }
       }
     };
@@ -204,23 +226,40 @@ public:
 
   void vmult(VectorType &dst, const VectorType &src) const
   {
-    switch (bandwidth)
+    if (lines->at.empty())
+      solve(dst.begin(), src.begin());
+    else
     {
-    case 1:
-      solve<1>(dst.begin(), src.begin());
-      break;
-    case 2:
-      solve<2>(dst.begin(), src.begin());
-      break;
-    case 3:
-      solve<3>(dst.begin(), src.begin());
-      break;
-    default:
-      solve<0>(dst.begin(), src.begin());
+      // in line order, then back (the same operations as on a level numbered by lines)
+      const double *b = src.begin();
+      for (unsigned int p = 0; p < work.size(); ++p)
+        work[p] = b[lines->at[p]];
+      solve(work.data(), work.data());
+      double *x = dst.begin();
+      for (unsigned int p = 0; p < work.size(); ++p)
+        x[lines->at[p]] = work[p];
     }
   }
 
 private:
+  void solve(double *x, const double *b) const
+  {
+    switch (bandwidth)
+    {
+    case 1:
+      solve<1>(x, b);
+      break;
+    case 2:
+      solve<2>(x, b);
+      break;
+    case 3:
+      solve<3>(x, b);
+      break;
+    default:
+      solve<0>(x, b);
+    }
+  }
+
   /// x = (L D L^T)^-1 b line by line: L y = b forward, then x = D^-1 y - L^T x backward (the
   /// scaling by D^-1 done in the backward sweep, the same operations in the same order as three
   /// separate sweeps). B: the bandwidth as a constant (the rows past the first B of a line
@@ -268,6 +307,7 @@ private:
   const RadialLines *lines = nullptr;
   unsigned int bandwidth = 0;
   std::vector<double> band;
+  mutable std::vector<double> work; // the vector in line order (a level not numbered by lines)
 };
 using Smoother = PreconditionChebyshev<MatrixType, VectorType, LineJacobi>;
 /// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator
@@ -325,11 +365,14 @@ public:
 /// set() through the Trilinos wrapper, and the copy indices between the active and level
 /// numberings, which the V-cycle on the system's own numbering does not need: 0.6 s at 1e6 Q2
 /// dofs, doc/performance.md). Built only where every owned row of each finer level is reached
-/// from a parent cell this rank sees (else: build() returns false).
+/// from a parent cell this rank sees (else: build() returns false). fine_active: the finest
+/// level's rows are the active dofs of its cells (the system's numbering; every cell of that
+/// level is active on a globally refined mesh), its level dofs are not used.
 class LevelTransfer
 {
 public:
-  bool build(const DoFHandler<2> &dof_handler, const MGConstrainedDoFs &constrained_dofs)
+  bool build(const DoFHandler<2> &dof_handler, const MGConstrainedDoFs &constrained_dofs,
+             const bool fine_active)
   {
     const auto &tria = dof_handler.get_triangulation();
     const auto &fe = dof_handler.get_fe();
@@ -345,13 +388,20 @@ public:
     for (unsigned int l = 0; l < n_levels; ++l)
       AssertThrow(dof_handler.n_dofs(l) <= types::global_dof_index(std::numeric_limits<int>::max()),
                   ExcMessage("FilmMultigrid: level dofs beyond 32-bit Epetra indices"));
+    const unsigned int fine = n_levels - 1;
+    // the rows of level l: its own level dofs, or the active ones on the finest level
+    auto owned_rows = [&](const unsigned int l) -> const IndexSet &
+    {
+      return fine_active && l == fine ? dof_handler.locally_owned_dofs()
+                                      : dof_handler.locally_owned_mg_dofs(l);
+    };
     for (unsigned int l = 0; l < n_levels; ++l)
-      maps.push_back(std::make_unique<Epetra_Map>(
-          dof_handler.locally_owned_mg_dofs(l).make_trilinos_map(comm, true)));
+      maps.push_back(std::make_unique<Epetra_Map>(owned_rows(l).make_trilinos_map(comm, true)));
     bool complete = true;
     for (unsigned int l = 1; l < n_levels; ++l)
     {
-      const IndexSet &owned = dof_handler.locally_owned_mg_dofs(l);
+      const IndexSet &owned = owned_rows(l);
+      const bool active_rows = fine_active && l == fine;
       const std::size_t n_rows = owned.n_elements();
       // (row, column, value) of each owned row, the row from the first child cell that has it
       std::vector<bool> done(n_rows, false);
@@ -372,9 +422,16 @@ public:
             const auto child_cell = cell->child(c);
             if (child_cell->level_subdomain_id() == numbers::artificial_subdomain_id)
               continue;
+            // active rows: a cell of the finest level that is not active, or whose active
+            // dofs this rank does not know, is skipped (its rows stay missing: build() fails)
+            if (active_rows && (!child_cell->is_active() || child_cell->is_artificial()))
+              continue;
             const FullMatrix<double> &P =
                 fe.get_prolongation_matrix(c, RefinementCase<2>::isotropic_refinement);
-            child_cell->get_mg_dof_indices(child);
+            if (active_rows)
+              child_cell->get_dof_indices(child);
+            else
+              child_cell->get_mg_dof_indices(child);
             for (unsigned int i = 0; i < n; ++i)
             {
               if (!owned.is_element(child[i]))
@@ -494,6 +551,7 @@ struct FilmMultigrid::Data
 {
   MGConstrainedDoFs constrained_dofs;
   std::vector<AffineConstraints<double>> level_constraints;
+  std::vector<char> by_position; // level matrix with CellSparsity's pattern
   std::vector<RadialLines> lines;
   MGLevelObject<MatrixType> level_matrices; // the assembled ones
   LevelMatrices operators;
@@ -571,99 +629,54 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   const MPI_Comm comm = dof_handler->get_communicator();
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
 
-  // Every level numbered by radial lines (as the active dofs are, number_by_radial_lines): the
-  // line blocks of the smoother are contiguous and the level matrices banded.
+  // The radial lines of every level (the smoother's line blocks).
   data->lines.resize(n_levels);
-  // The finest level takes the active numbers and lines (every active cell is on it): a cell
-  // loop instead of a second search by support points, and the system matrix is then that
-  // level's operator. Where a level dof would get a number this rank does not own, the finest
-  // level is numbered by its own lines like the others.
-  // The test is reduced over the ranks before the branch: every rank must take it, since it
-  // holds collectives (the reduction below, renumber_dofs).
-  bool fine_from_active =
-      Utilities::MPI::min(!active_line_start.empty() &&
-                                  active_line_start.back() ==
-                                      dof_handler->locally_owned_dofs().n_elements()
-                              ? 1
-                              : 0,
-                          comm) == 1;
-  if (fine_from_active)
-  {
-    const IndexSet &owned_level = dof_handler->locally_owned_mg_dofs(fine),
-                   &owned_active = dof_handler->locally_owned_dofs();
-    std::vector<types::global_dof_index> numbers(owned_level.n_elements(),
-                                                 numbers::invalid_dof_index);
-    const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
-    std::vector<types::global_dof_index> level_dofs(n), active_dofs(n);
+  // The finest level is the system itself where every locally owned active cell is on it (a
+  // globally refined mesh) and the active dofs are numbered by lines: its operator is the system
+  // matrix, its vectors the system's, its lines the active ones, and the transfer takes the
+  // active numbers of its cells as rows: its level dofs are never used. Else, or where the
+  // transfer cannot reach every owned active dof from a parent cell this rank sees (several
+  // ranks), the finest level gets its own lines and is assembled like the others, with
+  // MGTransferPrebuilt. Each test is reduced over the ranks before its branch: every rank must
+  // take the same one (collectives).
+  bool fine_active = !active_line_start.empty() &&
+                     active_line_start.back() == dof_handler->locally_owned_dofs().n_elements();
+  if (fine_active)
     for (const auto &cell : dof_handler->active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (cell->is_locally_owned() && cell->level() != int(fine))
       {
-        if (cell->level() != int(fine))
-        {
-          fine_from_active = false;
-          break;
-        }
-        cell->get_mg_dof_indices(level_dofs);
-        cell->get_dof_indices(active_dofs);
-        for (unsigned int i = 0; i < n; ++i)
-          if (owned_level.is_element(level_dofs[i]))
-          {
-            if (!owned_active.is_element(active_dofs[i]))
-              fine_from_active = false;
-            numbers[owned_level.index_within_set(level_dofs[i])] = active_dofs[i];
-          }
+        fine_active = false;
+        break;
       }
-    fine_from_active =
-        fine_from_active && owned_level.n_elements() == owned_active.n_elements() &&
-        std::find(numbers.begin(), numbers.end(), numbers::invalid_dof_index) == numbers.end();
-    fine_from_active = Utilities::MPI::min(fine_from_active ? 1 : 0, comm) == 1;
-    if (fine_from_active)
-    {
-      dof_handler->renumber_dofs(fine, numbers);
-      data->lines[fine].order.resize(owned_active.n_elements());
-      data->lines[fine].start = active_line_start;
-    }
-  }
-  for (unsigned int l = 0; l < n_levels; ++l)
+  fine_active = Utilities::MPI::min(fine_active ? 1 : 0, comm) == 1;
+  // The levels keep deal.II's numbering: the smoother gathers each vector into line order
+  // (LineJacobi::vmult). deal.II's renumbering of a level costs a pass over the whole
+  // hierarchy (~0.02 s per level at 1.05e6 dofs, whatever the level's size: 0.14 s for the 7
+  // coarse levels, doc/performance.md); the gather costs a pass over the level's vector.
+  auto number_level = [&](const unsigned int l)
   {
-    if (l == fine && fine_from_active)
-      continue;
     data->lines[l] = find_radial_lines(*dof_handler, *mapping, l);
-    dof_handler->renumber_dofs(
-        l, numbers_by_lines(dof_handler->locally_owned_mg_dofs(l), data->lines[l]));
-  }
+    index_by_position(data->lines[l]);
+  };
+  for (unsigned int l = 0; l < n_levels; ++l)
+    if (l < fine || !fine_active)
+      number_level(l);
   lap("level numbering by lines");
   data->constrained_dofs.initialize(*dof_handler);
   data->constrained_dofs.make_zero_boundary_constraints(
       *dof_handler, std::set<types::boundary_id>(dirichlet_ids.begin(), dirichlet_ids.end()));
   lap("level boundary dofs");
 
-  // The mesh is refined globally, so every active cell is on the finest level. When the level
-  // numbering of that level is the active one, the system matrix is the finest level operator
-  // and is not assembled twice.
-  bool same = dof_handler->locally_owned_mg_dofs(fine) == dof_handler->locally_owned_dofs();
-  {
-    const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
-    std::vector<types::global_dof_index> level_dofs(n), active_dofs(n);
-    for (const auto &cell : dof_handler->active_cell_iterators())
-      if (same && cell->is_locally_owned())
-      {
-        if (cell->level() != int(fine))
-        {
-          same = false;
-          break;
-        }
-        cell->get_dof_indices(active_dofs);
-        cell->get_mg_dof_indices(level_dofs);
-        same = level_dofs == active_dofs;
-      }
-  }
-  data->fine_is_system = Utilities::MPI::min(same ? 1 : 0, comm) == 1;
-  lap("fine level check");
-
+  data->fine_is_system =
+      fine_active && data->level_transfer.build(*dof_handler, data->constrained_dofs, true);
+  if (fine_active && !data->fine_is_system)
+    number_level(fine); // the finest level's own lines after all
   if (data->fine_is_system)
-    data->fine_is_system = data->level_transfer.build(*dof_handler, data->constrained_dofs);
-  if (!data->fine_is_system)
+  {
+    data->lines[fine].order.resize(dof_handler->locally_owned_dofs().n_elements());
+    data->lines[fine].start = active_line_start;
+  }
+  else
   {
     data->transfer = std::make_unique<MGTransferPrebuilt<VectorType>>(data->constrained_dofs);
     data->transfer->build(*dof_handler);
@@ -671,23 +684,40 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   lap("transfer");
 
   data->level_constraints.resize(n_levels);
+  data->by_position.assign(n_levels, 0);
   data->level_matrices.resize(0, fine);
   for (unsigned int l = 0; l < n_levels; ++l)
   {
+    if (l == fine && data->fine_is_system)
+      continue; // the system matrix, with the system's constraints
     IndexSet relevant;
     DoFTools::extract_locally_relevant_level_dofs(*dof_handler, l, relevant);
     auto &c = data->level_constraints[l];
     c.reinit(relevant);
     c.add_lines(data->constrained_dofs.get_boundary_indices(l));
     c.close();
-    if (l == fine && data->fine_is_system)
+    const IndexSet &owned = dof_handler->locally_owned_mg_dofs(l);
+    // one rank (boundary constraints only): MGTools' pattern from the level cells' dofs by local
+    // index, and the level assembly adds the cells without boundary dofs by position
+    data->by_position[l] = CellSparsity::applies(owned, c, comm);
+    if (data->by_position[l])
+    {
+      const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
+      std::vector<types::global_dof_index> dofs(n);
+      std::vector<unsigned int> cell_dofs;
+      cell_dofs.reserve(std::size_t(tria.n_cells(l)) * n);
+      for (const auto &cell : dof_handler->mg_cell_iterators_on_level(l))
+      {
+        cell->get_mg_dof_indices(dofs);
+        cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
+      }
+      CellSparsity::reinit(data->level_matrices[l], owned, cell_dofs, n, c, true, comm);
       continue;
+    }
     DynamicSparsityPattern dsp(relevant);
     MGTools::make_sparsity_pattern(*dof_handler, dsp, l, c);
-    SparsityTools::distribute_sparsity_pattern(dsp, dof_handler->locally_owned_mg_dofs(l), comm,
-                                               relevant);
-    data->level_matrices[l].reinit(dof_handler->locally_owned_mg_dofs(l),
-                                   dof_handler->locally_owned_mg_dofs(l), dsp, comm);
+    SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+    data->level_matrices[l].reinit(owned, owned, dsp, comm);
   }
 
   lap("level sparsity");
@@ -758,7 +788,14 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
             add_point(fe_values, q, K(fe_values.quadrature_point(q)));
         }
         cell->get_mg_dof_indices(dofs);
-        data->level_constraints[l].distribute_local_to_global(cell_matrix, dofs, matrix);
+        // a cell without boundary dofs: distribute_local_to_global's sums, by position
+        bool by_position = data->by_position[l];
+        for (unsigned int i = 0; i < n && by_position; ++i)
+          by_position = !data->level_constraints[l].is_constrained(dofs[i]);
+        if (by_position)
+          CellSparsity::add(matrix, cell_matrix, dofs);
+        else
+          data->level_constraints[l].distribute_local_to_global(cell_matrix, dofs, matrix);
       }
     matrix.compress(VectorOperation::add);
   }
@@ -787,12 +824,13 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       VectorType x(A.locally_owned_range_indices(), A.get_mpi_communicator()), b(x);
       std::uint64_t state =
           88172645463325252ull + A.locally_owned_range_indices().nth_index_in_set(0);
-      for (auto &v : b)
+      // in line order: the same start on a level numbered by lines or not
+      for (unsigned int p = 0; p < data->lines[l].size(); ++p)
       {
         state ^= state << 13; // xorshift64
         state ^= state >> 7;
         state ^= state << 17;
-        v = double(state >> 11) / double(1ull << 53) - 0.5;
+        b.begin()[data->lines[l].index(p)] = double(state >> 11) / double(1ull << 53) - 0.5;
       }
       IterationNumberControl control(eigenvalue_iterations, 1e-300, false, false);
       SolverCG<VectorType> cg(control);
@@ -820,7 +858,10 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     data->residual.resize(0, fine);
     for (unsigned int l = 0; l < n_levels; ++l)
     {
-      data->defect[l].reinit(dof_handler->locally_owned_mg_dofs(l), tria.get_communicator());
+      // the finest level is the system: its vectors have the system's (active) dofs
+      data->defect[l].reinit(l == fine ? dof_handler->locally_owned_dofs()
+                                       : dof_handler->locally_owned_mg_dofs(l),
+                             tria.get_communicator());
       data->solution[l].reinit(data->defect[l]);
       data->residual[l].reinit(data->defect[l]);
     }

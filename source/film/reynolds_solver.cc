@@ -1,3 +1,4 @@
+#include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/film_output.h>
 #include <sealfe/film/jfo_solver.h>
 #include <sealfe/film/lap_timer.h>
@@ -132,13 +133,35 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
 
   lap("setup: index sets, zero constraints, boundary dofs");
   // The constrained dofs are the same with any Dirichlet data: one sparsity pattern per mesh.
-  DynamicSparsityPattern dsp(locally_relevant_dofs);
-  DoFTools::make_sparsity_pattern(dof_handler, dsp, homogeneous_constraints, false);
-  SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
-                                             locally_relevant_dofs);
-  lap("setup: sparsity");
-  system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
-  lap("setup: matrix");
+  // One rank with Dirichlet constraints only (no hanging nodes: CellSparsity::applies): the
+  // same pattern from the cells' dofs by local index, and the assembly adds the cells without
+  // constrained dofs by position; else (several ranks, other constraints) deal.II's generic path.
+  if (CellSparsity::applies(locally_owned_dofs, homogeneous_constraints, mpi_communicator))
+  {
+    const unsigned int n = fe->n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<unsigned int> cell_dofs;
+    cell_dofs.reserve(std::size_t(triangulation.n_active_cells()) * n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+    {
+      cell->get_dof_indices(dofs);
+      cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
+    }
+    lap("setup: sparsity");
+    CellSparsity::reinit(system_matrix, locally_owned_dofs, cell_dofs, n, homogeneous_constraints,
+                         false, mpi_communicator);
+    lap("setup: matrix");
+  }
+  else
+  {
+    DynamicSparsityPattern dsp(locally_relevant_dofs);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, homogeneous_constraints, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
+                                               locally_relevant_dofs);
+    lap("setup: sparsity");
+    system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    lap("setup: matrix");
+  }
   setup_constraints();
   lap("setup: constraints");
 
@@ -207,6 +230,11 @@ void ReynoldsSolver::assemble_system()
     { load_integrator.add_affine_point(affine_loads, *polar, q, f); };
   }
 
+  // The matrix has CellSparsity's pattern where it applies (setup_system: the same test on the
+  // same constrained dofs), and the cells without constrained dofs are added by position.
+  const bool cells_by_position =
+      CellSparsity::applies(locally_owned_dofs, constraints, mpi_communicator);
+  double *const rhs = system_rhs.begin(); // the owned entries (by position: one rank)
   try
   {
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -223,8 +251,20 @@ void ReynoldsSolver::assemble_system()
           cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
         if (gather)
           affine_loads.add_cell(relevant_index);
-        constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
-                                               system_matrix, system_rhs);
+        // a cell without constrained dofs: the same sums as distribute_local_to_global, by
+        // position (one rank: the dof number is the local index of the row and column)
+        bool by_position = cells_by_position;
+        for (unsigned int i = 0; i < dofs_per_cell && by_position; ++i)
+          by_position = !constraints.is_constrained(local_dof_indices[i]);
+        if (by_position)
+        {
+          CellSparsity::add(system_matrix, cell_matrix, local_dof_indices);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            rhs[local_dof_indices[i]] += cell_rhs(i);
+        }
+        else
+          constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
+                                                 system_matrix, system_rhs);
       }
   }
   catch (...)

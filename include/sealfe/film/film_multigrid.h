@@ -47,9 +47,9 @@ public:
   FilmMultigrid();
   ~FilmMultigrid();
 
-  /// Number the (active) dofs by radial lines: by angle, then radius, within each rank's set.
-  /// The multigrid numbers its levels the same way, so that the finest level is the system
-  /// matrix and the smoother's line blocks are contiguous.
+  /// Number the (active) dofs by radial lines: by angle, then radius, within each rank's set,
+  /// so that the finest level is the system matrix with contiguous line blocks. The coarser
+  /// levels keep deal.II's numbering (the smoother gathers their vectors into line order).
   void number_by_radial_lines(dealii::DoFHandler<2> &dof_handler,
                               const dealii::Mapping<2> &mapping);
 

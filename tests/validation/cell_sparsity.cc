@@ -1,0 +1,240 @@
+// CellSparsity (one rank, Dirichlet constraints only) builds the sparsity pattern of deal.II's
+// generic path (DoFTools::make_sparsity_pattern with keep_constrained_dofs = false for the system
+// matrix, MGTools::make_sparsity_pattern with the level boundary constraints for the multigrid
+// levels, then the Trilinos matrix) from the cells' dofs by local index, and adds a cell without
+// constrained dofs by position. That is an identity, not an approximation: the same entries, and
+// every matrix and right-hand side entry receives the same additions in the same order. So the
+// patterns must be equal entry for entry and the assembled matrices and vectors equal to the bit
+// (exact comparisons, no tolerance), on every level of a graded annulus refined from its coarse
+// grid, degrees 1-3. A missing entry makes add() throw (third part); an extra or missing entry
+// fails the row comparison.
+#include <sealfe/film/annulus_mesh.h>
+#include <sealfe/film/cell_sparsity.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/multigrid/mg_constrained_dofs.h>
+#include <deal.II/multigrid/mg_tools.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace sealfe;
+using namespace dealii;
+
+namespace
+{
+/// The columns of each row, and the values, of a Trilinos matrix.
+std::vector<std::vector<std::pair<types::global_dof_index, double>>>
+rows_of(const TrilinosWrappers::SparseMatrix &A)
+{
+  std::vector<std::vector<std::pair<types::global_dof_index, double>>> rows(A.m());
+  for (types::global_dof_index i = 0; i < A.m(); ++i)
+    for (auto it = A.begin(i); it != A.end(i); ++it)
+      rows[i].emplace_back(it->column(), it->value());
+  return rows;
+}
+
+/// Counts of rows whose columns differ and of entries whose values differ (bits).
+std::pair<unsigned int, unsigned int> differences(const TrilinosWrappers::SparseMatrix &a,
+                                                  const TrilinosWrappers::SparseMatrix &b)
+{
+  const auto ra = rows_of(a), rb = rows_of(b);
+  unsigned int pattern = 0, values = 0;
+  for (std::size_t i = 0; i < ra.size(); ++i)
+  {
+    if (ra[i].size() != rb[i].size())
+    {
+      ++pattern;
+      continue;
+    }
+    bool same = true;
+    for (std::size_t k = 0; k < ra[i].size(); ++k)
+    {
+      same = same && ra[i][k].first == rb[i][k].first;
+      values += ra[i][k].second != rb[i][k].second;
+    }
+    pattern += !same;
+  }
+  return {pattern, values};
+}
+
+/// A cell matrix and vector whose entries are not sums of round numbers (so a sum in another
+/// order or a lost addition shows in the bits).
+void fill(FullMatrix<double> &A, Vector<double> &F, const unsigned int cell)
+{
+  const unsigned int n = F.size();
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    F(i) = std::cos(0.37 * (cell * n + i) + 0.1);
+    for (unsigned int j = 0; j < n; ++j)
+      A(i, j) = std::sin(0.61 * ((cell * n + i) * n + j) + 0.2);
+  }
+}
+} // namespace
+
+TEST(CellSparsity, SamePatternAndSumsAsTheGenericPathOnEveryLevel)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const double ri = 0.0355, ro = 0.0408;
+  for (const unsigned int degree : {1u, 2u, 3u})
+  {
+    AnnulusMesh m;
+    m.radial_cells = 8;
+    m.circumferential_cells = 64; // refined from 2 x 16 cells: 3 levels
+    m.grading_clearance = 1e-6;
+    m.grading_coning = 1e-3;
+    parallel::distributed::Triangulation<2> tria(
+        comm, Triangulation<2>::limit_level_difference_at_vertices,
+        parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
+    m.create(tria, ri, ro, 0);
+    ASSERT_EQ(tria.n_global_levels(), 3u);
+    const FE_Q<2> fe(degree);
+    DoFHandler<2> dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+    dof_handler.distribute_mg_dofs();
+    const unsigned int n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    FullMatrix<double> cell_matrix(n, n);
+    Vector<double> cell_rhs(n);
+
+    // the system: Dirichlet data on both circles
+    const IndexSet &owned = dof_handler.locally_owned_dofs();
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    AffineConstraints<double> constraints;
+    constraints.reinit(relevant);
+    for (const types::boundary_id id : {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary})
+      VectorTools::interpolate_boundary_values(MappingQ<2>(degree), dof_handler, id,
+                                               Functions::ConstantFunction<2>(1.5 + id),
+                                               constraints);
+    constraints.close();
+    ASSERT_TRUE(CellSparsity::applies(owned, constraints, comm));
+    DynamicSparsityPattern dsp(relevant);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    TrilinosWrappers::SparseMatrix generic, direct;
+    generic.reinit(owned, owned, dsp, comm);
+    std::vector<unsigned int> cell_dofs;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+    {
+      cell->get_dof_indices(dofs);
+      cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
+    }
+    CellSparsity::reinit(direct, owned, cell_dofs, n, constraints, false, comm);
+    TrilinosWrappers::MPI::Vector generic_rhs(owned, comm), direct_rhs(owned, comm);
+    unsigned int k = 0, by_position = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+    {
+      cell->get_dof_indices(dofs);
+      fill(cell_matrix, cell_rhs, k++);
+      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, generic, generic_rhs);
+      bool free = true;
+      for (const auto d : dofs)
+        free = free && !constraints.is_constrained(d);
+      if (free)
+      {
+        ++by_position;
+        CellSparsity::add(direct, cell_matrix, dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          direct_rhs.begin()[dofs[i]] += cell_rhs(i);
+      }
+      else
+        constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, direct, direct_rhs);
+    }
+    for (auto *A : {&generic, &direct})
+      A->compress(VectorOperation::add);
+    generic_rhs.compress(VectorOperation::add);
+    direct_rhs.compress(VectorOperation::add);
+    EXPECT_EQ(by_position, 6u * 64u) << "degree " << degree; // the cells off both circles
+    const auto [pattern, values] = differences(generic, direct);
+    EXPECT_EQ(generic.n_nonzero_elements(), direct.n_nonzero_elements()) << "degree " << degree;
+    EXPECT_EQ(pattern, 0u) << "degree " << degree;
+    EXPECT_EQ(values, 0u) << "degree " << degree;
+    unsigned int rhs_differences = 0;
+    for (unsigned int i = 0; i < owned.n_elements(); ++i)
+      rhs_differences += generic_rhs.begin()[i] != direct_rhs.begin()[i];
+    EXPECT_EQ(rhs_differences, 0u) << "degree " << degree;
+
+    // every level with its boundary dofs constrained (the multigrid's level matrices)
+    MGConstrainedDoFs mg_constrained;
+    mg_constrained.initialize(dof_handler);
+    mg_constrained.make_zero_boundary_constraints(
+        dof_handler, {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
+    for (unsigned int l = 0; l < tria.n_global_levels(); ++l)
+    {
+      const IndexSet &level_owned = dof_handler.locally_owned_mg_dofs(l);
+      IndexSet level_relevant;
+      DoFTools::extract_locally_relevant_level_dofs(dof_handler, l, level_relevant);
+      AffineConstraints<double> c;
+      c.reinit(level_relevant);
+      c.add_lines(mg_constrained.get_boundary_indices(l));
+      c.close();
+      ASSERT_TRUE(CellSparsity::applies(level_owned, c, comm));
+      DynamicSparsityPattern level_dsp(level_relevant);
+      MGTools::make_sparsity_pattern(dof_handler, level_dsp, l, c);
+      TrilinosWrappers::SparseMatrix level_generic, level_direct;
+      level_generic.reinit(level_owned, level_owned, level_dsp, comm);
+      std::vector<unsigned int> level_cell_dofs;
+      for (const auto &cell : dof_handler.mg_cell_iterators_on_level(l))
+      {
+        cell->get_mg_dof_indices(dofs);
+        level_cell_dofs.insert(level_cell_dofs.end(), dofs.begin(), dofs.end());
+      }
+      CellSparsity::reinit(level_direct, level_owned, level_cell_dofs, n, c, true, comm);
+      for (const auto &cell : dof_handler.mg_cell_iterators_on_level(l))
+      {
+        cell->get_mg_dof_indices(dofs);
+        fill(cell_matrix, cell_rhs, k++);
+        c.distribute_local_to_global(cell_matrix, dofs, level_generic);
+        bool free = true;
+        for (const auto d : dofs)
+          free = free && !c.is_constrained(d);
+        if (free)
+          CellSparsity::add(level_direct, cell_matrix, dofs);
+        else
+          c.distribute_local_to_global(cell_matrix, dofs, level_direct);
+      }
+      level_generic.compress(VectorOperation::add);
+      level_direct.compress(VectorOperation::add);
+      const auto [level_pattern, level_values] = differences(level_generic, level_direct);
+      EXPECT_EQ(level_generic.n_nonzero_elements(), level_direct.n_nonzero_elements())
+          << "degree " << degree << ", level " << l;
+      EXPECT_EQ(level_pattern, 0u) << "degree " << degree << ", level " << l;
+      EXPECT_EQ(level_values, 0u) << "degree " << degree << ", level " << l;
+    }
+
+    // broken: a pattern built without the last cell misses that cell's entries
+    std::vector<unsigned int> fewer(cell_dofs.begin(), cell_dofs.end() - n);
+    TrilinosWrappers::SparseMatrix missing;
+    CellSparsity::reinit(missing, owned, fewer, n, AffineConstraints<double>(), false, comm);
+    std::vector<types::global_dof_index> last(cell_dofs.end() - n, cell_dofs.end());
+    EXPECT_THROW(CellSparsity::add(missing, cell_matrix, last), std::exception);
+  }
+}
+
+TEST(CellSparsity, RefusesConstraintsThatCoupleDofs)
+{
+  IndexSet all = complete_index_set(10);
+  AffineConstraints<double> dirichlet, hanging;
+  dirichlet.add_line(3);
+  dirichlet.set_inhomogeneity(3, 2.0);
+  dirichlet.close();
+  hanging.add_line(3);
+  hanging.add_entry(3, 4, 0.5);
+  hanging.add_entry(3, 5, 0.5);
+  hanging.close();
+  EXPECT_TRUE(CellSparsity::applies(all, dirichlet, MPI_COMM_WORLD));
+  EXPECT_FALSE(CellSparsity::applies(all, hanging, MPI_COMM_WORLD));
+  IndexSet part(10);
+  part.add_range(0, 5);
+  EXPECT_FALSE(CellSparsity::applies(part, dirichlet, MPI_COMM_WORLD)); // not every dof owned
+}
