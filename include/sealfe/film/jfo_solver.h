@@ -54,6 +54,12 @@ private:
   /// as products of the global P A and G instead of a loop over the cells; false (nothing done)
   /// when the global matrices are not there or the vectors are not the plain one-rank layout.
   bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs);
+  /// The local values of an owned (not ghosted) vector: entry k is the k-th locally owned dof.
+  double *owned_values(VectorType &x) const;
+  /// The FB-Newton Jacobian at (a, v) into the system matrix (no right-hand side) as column
+  /// combinations of the global P A and G, for the linearised loads at the solution; false
+  /// (nothing done) when the global matrices or the plain one-rank layout are not there.
+  bool jacobian_by_columns(const VectorType &a, const VectorType &v);
   /// Start from the converged state of the mesh twice as coarse, else the clipped full film.
   void warm_start();
   /// Start values from the mesh-sequencing solver (a coarse ReynoldsSolver with a copy of the
