@@ -2,8 +2,9 @@
 //  - without cavitation all models give the full-film solution to solver tolerance;
 //  - JFO conserves mass: inner + outer leakage = 0 to 1e-8 relative, and the flow through any
 //    circle of the dam equals the leakage (to the accuracy of a direct flux integral);
-//  - the JFO residuals as products of the assembled matrices give the loads of the cell-by-cell
-//    assembly to the Newton tolerance, and the mass balance holds on both; so does the low-rank
+//  - the JFO residuals and Jacobians from the assembled matrices give the loads and linearised
+//    loads of the cell-by-cell assembly to the Newton tolerance, and the mass balance holds on
+//    both; so does the low-rank
 //    update of the global active-set rounds against a factorisation per round;
 //  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
 //  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
@@ -92,14 +93,18 @@ TEST(CavitationFE, JfoConservesMassThroughEveryCircle)
 TEST(CavitationFE, JfoResidualsByMatrixProductsGiveTheCellAssemblysSolution)
 {
   // The active-set rounds and line searches take the residual and right-hand side as products of
-  // the assembled P A and G (JFOSolver::assemble_by_products); the same sums as the cell loop in
-  // another order. Both end on the same cavitated set, where the JFO problem is linear, with a
-  // relative mass residual below the Newton tolerance (Cavitation/Tolerance = 1e-10); so the
-  // loads agree to that tolerance and the mass balance holds (1e-8, as above) on both.
+  // the assembled P A and G (JFOSolver::assemble_by_products), the active-set Jacobians as their
+  // column selections and the Jacobian at the solution (the linearised loads) as their column
+  // combinations; the same sums as the cell loop in another order. Both end on the same
+  // cavitated set, where the JFO problem is linear, with a relative mass residual below the
+  // Newton tolerance (Cavitation/Tolerance = 1e-10); so the loads agree to that tolerance and the
+  // mass balance holds (1e-8, as above) on both. The linearised loads solve one linear system
+  // whose matrices are the same up to round-off (bitwise where a_j + v_j > 0): they agree to the
+  // same tolerance.
   const FilmThickness film = wavy_film();
   const OperatingConditions conditions = low_pressure();
   const double tolerance = 1e-10;
-  FilmLoads l[2];
+  FilmLoads l[2], lin[2];
   for (const bool by_cells : {false, true})
   {
     JFOSolver::assemble_by_cells = by_cells;
@@ -109,8 +114,15 @@ TEST(CavitationFE, JfoResidualsByMatrixProductsGiveTheCellAssemblysSolution)
     EXPECT_LT(solver.nonlinear_residual(), tolerance);
     const double Q = std::abs(l[by_cells].leakage_outer);
     EXPECT_LT(std::abs(l[by_cells].leakage_inner + l[by_cells].leakage_outer), 1e-8 * Q);
+    // dF/dz and dM/d(tilt): a uniform gap change and a tilt about x
+    lin[by_cells] = solver.linearized_loads(
+        {[](double r, double t) { return 1e-7 + 1e-5 * r * std::sin(t); }, {}});
   }
   JFOSolver::assemble_by_cells = false;
+  ASSERT_NE(lin[0].force_z, 0.0);
+  EXPECT_NEAR(lin[0].force_z, lin[1].force_z, tolerance * std::abs(lin[1].force_z));
+  EXPECT_NEAR(lin[0].moment_x, lin[1].moment_x,
+              tolerance * std::abs(lin[1].force_z) * film.outer_radius);
   ASSERT_GT(l[0].cavitated_fraction, 0.05);
   EXPECT_NEAR(l[0].cavitated_fraction, l[1].cavitated_fraction, tolerance);
   EXPECT_NEAR(l[0].force_z, l[1].force_z, tolerance * std::abs(l[1].force_z));

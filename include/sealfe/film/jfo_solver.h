@@ -27,8 +27,8 @@ public:
   JFOSolver(ReynoldsSolver &solver, double flow_scale);
   /// Throws std::runtime_error if the iteration does not converge.
   void solve();
-  /// Tests: assemble every residual and right-hand side cell by cell (as before the products of
-  /// the global matrices were used), to compare the two.
+  /// Tests: assemble every residual, right-hand side and Jacobian cell by cell (as before the
+  /// global matrices P A and G were used), to compare the two.
   static inline bool assemble_by_cells = false;
   /// Largest number of changed columns for which a global active-set round solves by a low-rank
   /// update of the held factorisation instead of a new one (low_rank_solve); 0 turns it off
