@@ -255,6 +255,11 @@ const double *plain_values(const TrilinosWrappers::MPI::Vector &x, const std::si
 }
 } // namespace
 
+const double *JFOSolver::owned_values(const VectorType &x) const
+{
+  return owned_values(const_cast<VectorType &>(x));
+}
+
 double *JFOSolver::owned_values(VectorType &x) const
 {
   // deal.II's map of an owned vector lists the owned indices in increasing order
@@ -538,9 +543,18 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
       newton_rhs.compress(VectorOperation::add);
   }
   double fb_squared = 0;
-  for (const auto i : s.locally_owned_dofs)
-    if (!s.homogeneous_constraints.is_constrained(i))
-      fb_squared += Utilities::fixed_power<2>(FischerBurmeister(a[i], v[i]).value);
+  const std::size_t n_dofs = s.dof_handler.n_dofs();
+  if (const double *pa = plain_values(a, n_dofs), *pv = plain_values(v, n_dofs); pa && pv)
+  {
+    // one rank: the same sum without a map lookup per entry
+    for (std::size_t i = 0; i < n_dofs; ++i)
+      if (!s.homogeneous_constraints.is_constrained(i))
+        fb_squared += Utilities::fixed_power<2>(FischerBurmeister(pa[i], pv[i]).value);
+  }
+  else
+    for (const auto i : s.locally_owned_dofs)
+      if (!s.homogeneous_constraints.is_constrained(i))
+        fb_squared += Utilities::fixed_power<2>(FischerBurmeister(a[i], v[i]).value);
   fb_squared = Utilities::MPI::sum(fb_squared, s.mpi_communicator);
   const double r = residual.l2_norm() / flow_scale;
   return 0.5 * (r * r + fb_squared);
@@ -828,9 +842,14 @@ bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
 double JFOSolver::complementarity(const VectorType &aa, const VectorType &vv) const
 {
   double m = 0;
+  const double *pa = owned_values(aa), *pv = owned_values(vv);
+  std::size_t k = 0;
   for (const auto i : s.locally_owned_dofs)
+  {
     if (!s.homogeneous_constraints.is_constrained(i))
-      m = std::max(m, std::abs(FischerBurmeister(aa[i], vv[i]).value));
+      m = std::max(m, std::abs(FischerBurmeister(pa[k], pv[k]).value));
+    ++k;
+  }
   return Utilities::MPI::max(m, s.mpi_communicator);
 }
 
@@ -1252,18 +1271,21 @@ void JFOSolver::store_solution()
   s.factorize(false, true, true);
   s.jfo_keep_pressure.reinit(s.locally_owned_dofs, s.mpi_communicator);
   s.jfo_elimination.reinit(s.locally_owned_dofs, s.mpi_communicator);
-  for (const auto i : s.locally_owned_dofs)
+  const double *pa = owned_values(a_owned), *pv = owned_values(v_owned);
+  double *keep = owned_values(s.jfo_keep_pressure), *elimination = owned_values(s.jfo_elimination);
+  for (std::size_t k = 0; k < s.locally_owned_dofs.n_elements(); ++k)
   {
-    const FischerBurmeister fb(a_owned[i], v_owned[i]);
-    s.jfo_keep_pressure[i] = fb.keeps_pressure() ? 1.0 : 0.0;
-    s.jfo_elimination[i] = fb.keeps_pressure() ? -fb.d_a / fb.d_b : -fb.d_b / fb.d_a;
+    const FischerBurmeister fb(pa[k], pv[k]);
+    keep[k] = fb.keeps_pressure() ? 1.0 : 0.0;
+    elimination[k] = fb.keeps_pressure() ? -fb.d_a / fb.d_b : -fb.d_b / fb.d_a;
   }
   s.jfo_keep_pressure.compress(VectorOperation::insert);
   s.jfo_elimination.compress(VectorOperation::insert);
 
   VectorType p(s.locally_owned_dofs, s.mpi_communicator);
-  for (const auto i : s.locally_owned_dofs)
-    p[i] = s.cavitation.pressure + s.pressure_scale * a_owned[i];
+  double *pp = owned_values(p);
+  for (std::size_t k = 0; k < s.locally_owned_dofs.n_elements(); ++k)
+    pp[k] = s.cavitation.pressure + s.pressure_scale * pa[k];
   p.compress(VectorOperation::insert);
   s.locally_relevant_solution = p;
   s.locally_relevant_void = v_owned;

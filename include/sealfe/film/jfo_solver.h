@@ -56,6 +56,7 @@ private:
   bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs);
   /// The local values of an owned (not ghosted) vector: entry k is the k-th locally owned dof.
   double *owned_values(VectorType &x) const;
+  const double *owned_values(const VectorType &x) const;
   /// The FB-Newton Jacobian at (a, v) into the system matrix (no right-hand side) as column
   /// combinations of the global P A and G, for the linearised loads at the solution; false
   /// (nothing done) when the global matrices or the plain one-rank layout are not there.
