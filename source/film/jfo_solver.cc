@@ -523,10 +523,13 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
       // the values are set in place (for_each_row)
       const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
       std::vector<char> keep_pressure(M.NumMyCols());
+      // one rank (always, with global matrices): the entries by index, not by a map lookup
+      const std::size_t n_dofs = s.dof_handler.n_dofs();
+      const double *pa = plain_values(a, n_dofs), *pv = plain_values(v, n_dofs);
       for (int c = 0; c < M.NumMyCols(); ++c)
       {
         const auto j = M.ColMap().GID64(c);
-        keep_pressure[c] = a[j] >= v[j];
+        keep_pressure[c] = pa && pv ? pa[j] >= pv[j] : a[j] >= v[j];
       }
       for_each_row(M,
                    [&](int, const int entries, double *row_values, const int *columns,
