@@ -725,7 +725,7 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
   // of k + 1 columns with A0's factors (one block solve: MUMPS in one call, KLU as a
   // multivector) and a k x k system cost less than a new factorisation for small k
   // (doc/performance.md, Session 11). The accepted round (no flips) may be one of these:
-  // solve_column_update checks the backward error of A1's true residual <= 64 u, else the round
+  // solve_column_update checks the backward error of A1's true residual <= 128 u, else the round
   // factorises; the converged state is verified by the nonlinear residual.
   SparseDirect *lu = s.linear_system_solver.factorization();
   if (factored_keep_pressure.empty() || !lu || row_gid.empty() ||
@@ -769,8 +769,8 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
                  }
                });
   // C is refused below rcond sqrt(u): its solve would lose more than half the digits. The
-  // backward error bound 64 u (2^-46, 1.4e-14) is a guard against a failed update, with a
-  // margin over the round-off of a backward-stable solve (the factorised rounds' solves measure
+  // backward error bound 128 u (2^-46, 1.4e-14; u = 2^-53) is a guard against a failed update, with
+  // a margin over the round-off of a backward-stable solve (the factorised rounds' solves measure
   // 7e-19..4e-17, the updates 4e-19..4e-17 on the tilted seal at 3.3e4 and 1.3e5 dofs)
   double rcond, backward_error;
   const LowRankSolve result = solve_column_update(*lu, s.system_matrix, columns, std::move(U), b, x,
