@@ -297,7 +297,9 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
     // the level matrices need K alone (pressure_flow: local_film's K without the rest)
     auto prepare = [this]()
     {
-      const auto K = [this](const Point<2> &x) { return equation_scale * pressure_flow(x); };
+      const double cos_tilt = std::cos(film.tilt_angle), sin_tilt = std::sin(film.tilt_angle);
+      const auto K = [this, cos_tilt, sin_tilt](const Point<2> &x)
+      { return equation_scale * pressure_flow(x, cos_tilt, sin_tilt); };
       multigrid.prepare(system_matrix, K, polynomial_degree + 2, multigrid_parameters);
     };
     linear_system_solver.set_multigrid(&multigrid, prepare);
@@ -358,10 +360,39 @@ void ReynoldsSolver::solve()
 
 ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
 {
+  const bool planar = film.wave_amplitude == 0 && !film.has_added_terms() && film.tilt != 0;
+  return local_film(x, x.norm(), std::atan2(x[1], x[0]), planar ? std::cos(film.tilt_angle) : 1,
+                    planar ? std::sin(film.tilt_angle) : 0);
+}
+
+ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x, const double r,
+                                                     const double theta, const double cos_tilt,
+                                                     const double sin_tilt) const
+{
   LocalFilm f;
-  f.r = x.norm();
-  f.theta = std::atan2(x[1], x[0]);
-  f.h = film.value(f.r, f.theta);
+  f.r = r;
+  f.theta = theta;
+  double dh_dtheta, h_t;
+  if (film.wave_amplitude == 0 && !film.has_added_terms())
+  {
+    // FilmThickness's coned, tilted film written with r cos(theta - psi) = x cos psi + y sin psi,
+    // r sin(theta - psi) = y cos psi - x sin psi, r sin theta = y, r cos theta = x: the same
+    // values to round-off, without the sine and cosine per point (4.2e6 points at 1e6 dofs)
+    const double r_cos = x[0] * cos_tilt + x[1] * sin_tilt;
+    const double r_sin = x[1] * cos_tilt - x[0] * sin_tilt;
+    f.h = film.clearance + film.axial_offset + film.coning * (r - film.inner_radius) +
+          film.tilt * r_cos;
+    dh_dtheta = -film.tilt * r_sin;
+    h_t = film.tilt_rate_x == 0 && film.tilt_rate_y == 0
+              ? film.axial_velocity
+              : film.axial_velocity + film.tilt_rate_x * x[1] - film.tilt_rate_y * x[0];
+  }
+  else
+  {
+    f.h = film.value(f.r, f.theta);
+    dh_dtheta = film.d_dtheta(f.r, f.theta);
+    h_t = film.d_dt(f.r, f.theta);
+  }
   const double mu = conditions.viscosity;
   // Surface features: the equation is solved in the frame of the face that carries them (they
   // stand still there), where the mean surface velocity is (w1 + w2)/2 - w_F and the rest of the
@@ -375,8 +406,6 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
   const Tensor<1, 2> er({x[0] / f.r, x[1] / f.r}), et({-x[1] / f.r, x[0] / f.r});
   const Tensor<1, 2> rotation({-x[1], x[0]}); // r e_theta
   f.u = w_mean * rotation;
-  const double dh_dtheta = film.d_dtheta(f.r, f.theta);
-  double h_t = film.d_dt(f.r, f.theta);
   if (w_frame != 0)
     h_t += w_frame * dh_dtheta;
   if (source)
@@ -429,10 +458,22 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x) const
 
 Tensor<2, 2> ReynoldsSolver::pressure_flow(const Point<2> &x) const
 {
+  return pressure_flow(x, std::cos(film.tilt_angle), std::sin(film.tilt_angle));
+}
+
+Tensor<2, 2> ReynoldsSolver::pressure_flow(const Point<2> &x, const double cos_tilt,
+                                           const double sin_tilt) const
+{
   // local_film(x).K by the same expressions, without the film's derivatives, velocities and
-  // contact: what the multigrid's level matrices need at every level quadrature point.
-  const double r = x.norm(), theta = std::atan2(x[1], x[0]);
-  const double h = film.value(r, theta), mu = conditions.viscosity;
+  // contact: what the multigrid's level matrices need at every level quadrature point. The
+  // coned, tilted film as in local_film (no sine, cosine or atan2 per point).
+  const double r = x.norm();
+  const double h = film.wave_amplitude == 0 && !film.has_added_terms()
+                       ? film.clearance + film.axial_offset +
+                             film.coning * (r - film.inner_radius) +
+                             film.tilt * (x[0] * cos_tilt + x[1] * sin_tilt)
+                       : film.value(r, std::atan2(x[1], x[0]));
+  const double mu = conditions.viscosity;
   if (flow_factors.is_smooth())
   {
     const double k = h * h * h / (12 * mu);
@@ -503,9 +544,16 @@ void ReynoldsSolver::film_matrices(
   F = 0;
   // K grad phi_j once per point, not once per (i, j) pair (the same products, so the same bits)
   std::vector<Tensor<1, 2>> K_grad(n);
+  // cos, sin of the tilt angle once per cell (local_film's coned, tilted film)
+  const double cos_tilt = std::cos(film.tilt_angle), sin_tilt = std::sin(film.tilt_angle);
   for (const unsigned int q : fe_values.quadrature_point_indices())
   {
-    const LocalFilm f = local_film(fe_values.quadrature_point(q));
+    const Point<2> &x = fe_values.quadrature_point(q);
+    LocalFilm f;
+    if constexpr (polar)
+      f = local_film(x, fe_values.radius(q), fe_values.angle(q), cos_tilt, sin_tilt);
+    else
+      f = local_film(x, x.norm(), std::atan2(x[1], x[0]), cos_tilt, sin_tilt);
     if (at_point)
       at_point(q, f);
     const Tensor<2, 2> K = equation_scale * f.K;

@@ -94,8 +94,16 @@ public:
     double phi_r = 1, phi_theta = 1, phi_s = 0, h_T; // flow factors and expected gap (output)
   };
   LocalFilm local_film(const dealii::Point<2> &x) const;
+  /// The same with r = |x|, theta = atan2(x) and cos, sin of the film's tilt angle given (the
+  /// assembly has them per row and per cell): on the coned, tilted film (no waviness, expression
+  /// or features) h, dh/dtheta and dh/dt then take no sine or cosine per point.
+  LocalFilm local_film(const dealii::Point<2> &x, const double r, const double theta,
+                       const double cos_tilt, const double sin_tilt) const;
   /// The pressure-flow tensor K alone (equal to local_film(x).K, at a fraction of the cost).
   dealii::Tensor<2, 2> pressure_flow(const dealii::Point<2> &x) const;
+  /// The same with cos, sin of the film's tilt angle given (once per level assembly).
+  dealii::Tensor<2, 2> pressure_flow(const dealii::Point<2> &x, const double cos_tilt,
+                                     const double sin_tilt) const;
 
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
   /// into `directory`; returns the PVD file name (film_output.h).
