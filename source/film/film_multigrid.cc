@@ -73,7 +73,8 @@ RadialLines find_radial_lines(const DoFHandler<2> &dof_handler, const Mapping<2>
   {
     fe_values.reinit(cell);
     for (unsigned int i = 0; i < dofs.size(); ++i)
-      if (owned.is_element(dofs[i]))
+      // a dof shared by several cells is keyed once (its support point is the same)
+      if (owned.is_element(dofs[i]) && key[owned.index_within_set(dofs[i])].first < 0)
       {
         const Point<2> &x = fe_values.quadrature_point(i);
         // angles are multiples of 2 pi / (k N_theta): 2^24 keys a turn separate them

@@ -90,7 +90,7 @@ public:
     dealii::Tensor<1, 2> c, dc_dh; // Couette flux h_T u + (u1 - u2)/2 sigma phi_s e_theta
     double c_div, dc_div_factor;   // div c, and d(omega_eff)/dh (div of a perturbed c)
     double squeeze, dsqueeze_dht;  // d h_T/dt = h_T'(h) dh/dt, and h_T'(h)
-    double contact_pressure, dcontact_dh;
+    double contact_pressure = 0, dcontact_dh = 0;    // asperity contact (0 without a model)
     double phi_r = 1, phi_theta = 1, phi_s = 0, h_T; // flow factors and expected gap (output)
   };
   LocalFilm local_film(const dealii::Point<2> &x) const;
