@@ -136,17 +136,12 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   // One rank with Dirichlet constraints only (no hanging nodes: CellSparsity::applies): the
   // same pattern from the cells' dofs by local index, and the assembly adds the cells without
   // constrained dofs by position; else (several ranks, other constraints) deal.II's generic path.
-  if (CellSparsity::applies(locally_owned_dofs, homogeneous_constraints, mpi_communicator))
+  matrix_by_position =
+      CellSparsity::applies(locally_owned_dofs, homogeneous_constraints, mpi_communicator);
+  if (matrix_by_position)
   {
     const unsigned int n = fe->n_dofs_per_cell();
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<unsigned int> cell_dofs;
-    cell_dofs.reserve(std::size_t(triangulation.n_active_cells()) * n);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-    {
-      cell->get_dof_indices(dofs);
-      cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
-    }
+    const std::vector<unsigned int> cell_dofs = CellSparsity::active_cell_dofs(dof_handler);
     lap("setup: sparsity");
     CellSparsity::reinit(system_matrix, locally_owned_dofs, cell_dofs, n, homogeneous_constraints,
                          false, mpi_communicator);
@@ -230,10 +225,8 @@ void ReynoldsSolver::assemble_system()
     { load_integrator.add_affine_point(affine_loads, *polar, q, f); };
   }
 
-  // The matrix has CellSparsity's pattern where it applies (setup_system: the same test on the
-  // same constrained dofs), and the cells without constrained dofs are added by position.
-  const bool cells_by_position =
-      CellSparsity::applies(locally_owned_dofs, constraints, mpi_communicator);
+  // The matrix has CellSparsity's pattern where it applies (matrix_by_position, setup_system),
+  // and the cells without constrained dofs are added by position.
   double *const rhs = system_rhs.begin(); // the owned entries (by position: one rank)
   try
   {
@@ -253,10 +246,7 @@ void ReynoldsSolver::assemble_system()
           affine_loads.add_cell(relevant_index);
         // a cell without constrained dofs: the same sums as distribute_local_to_global, by
         // position (one rank: the dof number is the local index of the row and column)
-        bool by_position = cells_by_position;
-        for (unsigned int i = 0; i < dofs_per_cell && by_position; ++i)
-          by_position = !constraints.is_constrained(local_dof_indices[i]);
-        if (by_position)
+        if (matrix_by_position && CellSparsity::unconstrained(constraints, local_dof_indices))
         {
           CellSparsity::add(system_matrix, cell_matrix, local_dof_indices);
           for (unsigned int i = 0; i < dofs_per_cell; ++i)

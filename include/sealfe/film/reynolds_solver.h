@@ -254,6 +254,9 @@ private:
   dealii::AffineConstraints<double> constraints;
   dealii::IndexSet inner_boundary_dofs, outer_boundary_dofs;
   dealii::TrilinosWrappers::SparseMatrix system_matrix;
+  /// system_matrix has CellSparsity's pattern (set by setup_system: one rank, Dirichlet
+  /// constraints only), so the assembly adds the cells without constrained dofs by position.
+  bool matrix_by_position = false;
   dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution, system_rhs;
 
   /// KLU or Krylov + AMG (film_linear_solver.h); mutable: the linearised solves of a const
