@@ -174,6 +174,25 @@ double backward_error(const TrilinosWrappers::SparseMatrix &A, const std::vector
 }
 
 /// The low-rank solve against a fresh factorisation for k changed columns of an m x m grid.
+/// max |x - y| of two answers of A z = b with backward errors eta_x, eta_y, and its round-off
+/// bound: |z - z*| <= |A^-1| eta (|A| |z| + |b|) for each, |A^-1|_inf <= 1 / sigma (Varah)
+std::pair<double, double> two_solve_difference(const GridMatrix &g, const std::vector<double> &x,
+                                               const double eta_x, const std::vector<double> &y,
+                                               const double eta_y, const std::vector<double> &b)
+{
+  const double A_norm = g.A.linfty_norm();
+  double x_max = 0, y_max = 0, b_max = 0, difference = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    x_max = std::max(x_max, std::abs(x[i]));
+    y_max = std::max(y_max, std::abs(y[i]));
+    b_max = std::max(b_max, std::abs(b[i]));
+    difference = std::max(difference, std::abs(x[i] - y[i]));
+  }
+  return {difference,
+          (eta_x * (A_norm * x_max + b_max) + eta_y * (A_norm * y_max + b_max)) / g.sigma};
+}
+
 void check_update(const unsigned int m, const unsigned int k, const char *package)
 {
   GridMatrix g(m);
@@ -219,18 +238,7 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
   const double eta_fresh = backward_error(g.A, y, b);
   EXPECT_LE(backward_error(g.A, x, b), 0x1p-46); // recomputed (other summation order)
   EXPECT_LE(rcond, 1.0); // 1 / ((1 + |E^T Z|) |C^-1|) <= 1 / (|C| |C^-1|) <= 1
-  // |x - x*| <= |A1^-1| eta (|A1| |x| + |b|) for each answer, |A1^-1|_inf <= 1 / sigma
-  const double A_norm = g.A.linfty_norm();
-  double x_max = 0, y_max = 0, b_max = 0, difference = 0;
-  for (unsigned int i = 0; i < N; ++i)
-  {
-    x_max = std::max(x_max, std::abs(x[i]));
-    y_max = std::max(y_max, std::abs(y[i]));
-    b_max = std::max(b_max, std::abs(b[i]));
-    difference = std::max(difference, std::abs(x[i] - y[i]));
-  }
-  const double bound =
-      (eta_update * (A_norm * x_max + b_max) + eta_fresh * (A_norm * y_max + b_max)) / g.sigma;
+  const auto [difference, bound] = two_solve_difference(g, x, eta_update, y, eta_fresh, b);
   std::cout << package << ", " << N << " unknowns, " << K << " columns: rcond " << rcond
             << ", backward errors " << eta_update << " (update), " << eta_fresh
             << " (fresh), difference " << difference << " <= " << bound << "\n";
@@ -279,17 +287,7 @@ TEST(SparseDirect, LowRankUpdateWithNoColumnsIsThePlainSolve)
     std::vector<double> y(b);
     lu.solve_block(y, 1);
     const double eta_plain = backward_error(g.A, y, b);
-    const double A_norm = g.A.linfty_norm();
-    double x_max = 0, y_max = 0, b_max = 0, difference = 0;
-    for (unsigned int i = 0; i < N; ++i)
-    {
-      x_max = std::max(x_max, std::abs(x[i]));
-      y_max = std::max(y_max, std::abs(y[i]));
-      b_max = std::max(b_max, std::abs(b[i]));
-      difference = std::max(difference, std::abs(x[i] - y[i]));
-    }
-    const double bound =
-        (eta_update * (A_norm * x_max + b_max) + eta_plain * (A_norm * y_max + b_max)) / g.sigma;
+    const auto [difference, bound] = two_solve_difference(g, x, eta_update, y, eta_plain, b);
     std::cout << package << ", k = 0: backward errors " << eta_update << ", " << eta_plain
               << ", difference " << difference << " <= " << bound << "\n";
     EXPECT_LE(difference, bound);
