@@ -2,15 +2,18 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace sealfe::testing
 {
@@ -38,6 +41,36 @@ inline std::string read_file(const fs::path &f)
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// The columns of a CSV text with a header line (doc/csv.md), keyed by the name before " [unit]";
+/// a field that is empty, missing at the end of a row or not a number is NaN, so that every
+/// column has one entry per row.
+inline std::map<std::string, std::vector<double>> read_csv(const std::string &text)
+{
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::istringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');)
+    names.push_back(cell.substr(0, cell.find(" [")));
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(in, line))
+  {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');)
+      cells.push_back(cell);
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+      const char *begin = i < cells.size() ? cells[i].c_str() : "";
+      char *end = nullptr;
+      const double value = std::strtod(begin, &end);
+      columns[names[i]].push_back(end == begin ? std::nan("") : value);
+    }
+  }
+  return columns;
 }
 
 /// Runs `[launcher] sealfe <command> case.prm` in `dir` with the prm body; the Output directory

@@ -2,6 +2,8 @@
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_accessor.h>
+#include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/exceptions.h>
 
 #include <Epetra_CrsGraph.h>
@@ -102,10 +104,50 @@ void CellSparsity::reinit(TrilinosWrappers::SparseMatrix &matrix, const IndexSet
   matrix.reinit(pattern, false);
 }
 
-void CellSparsity::add(const TrilinosWrappers::SparseMatrix &matrix,
+std::vector<unsigned int> CellSparsity::active_cell_dofs(const DoFHandler<2> &dof_handler)
+{
+  const unsigned int n = dof_handler.get_fe().n_dofs_per_cell();
+  std::vector<types::global_dof_index> dofs(n);
+  std::vector<unsigned int> cell_dofs;
+  cell_dofs.reserve(std::size_t(dof_handler.get_triangulation().n_active_cells()) * n);
+  for (const auto &cell : dof_handler.active_cell_iterators())
+  {
+    cell->get_dof_indices(dofs);
+    cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
+  }
+  return cell_dofs;
+}
+
+std::vector<unsigned int> CellSparsity::level_cell_dofs(const DoFHandler<2> &dof_handler,
+                                                        const unsigned int level)
+{
+  const unsigned int n = dof_handler.get_fe().n_dofs_per_cell();
+  std::vector<types::global_dof_index> dofs(n);
+  std::vector<unsigned int> cell_dofs;
+  cell_dofs.reserve(std::size_t(dof_handler.get_triangulation().n_cells(level)) * n);
+  for (const auto &cell : dof_handler.mg_cell_iterators_on_level(level))
+  {
+    cell->get_mg_dof_indices(dofs);
+    cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
+  }
+  return cell_dofs;
+}
+
+bool CellSparsity::unconstrained(const AffineConstraints<double> &constraints,
+                                 const std::vector<types::global_dof_index> &dofs)
+{
+  for (const auto d : dofs)
+    if (constraints.is_constrained(d))
+      return false;
+  return true;
+}
+
+void CellSparsity::add(TrilinosWrappers::SparseMatrix &matrix,
                        const FullMatrix<double> &cell_matrix,
                        const std::vector<types::global_dof_index> &dofs)
 {
+  // deal.II gives the Epetra matrix only as const; its row views point into the values, which
+  // this writes (hence the non-const `matrix`)
   const Epetra_CrsMatrix &E = matrix.trilinos_matrix();
   constexpr unsigned int max_dofs = 64;
   const unsigned int m = dofs.size();

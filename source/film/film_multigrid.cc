@@ -1,6 +1,7 @@
 #include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/film_multigrid.h>
 #include <sealfe/film/lap_timer.h>
+#include <sealfe/film/line_jacobi.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/sparse_direct.h>
 
@@ -42,19 +43,6 @@ namespace
 using VectorType = FilmMultigrid::VectorType;
 using MatrixType = TrilinosWrappers::SparseMatrix;
 
-/// The locally owned dofs of one level grouped into radial lines (dofs at one angle), each
-/// sorted by radius: line k is the positions start[k] .. start[k+1] of that order; `order` is
-/// the position of each owned dof (its index within the owned set), `at` the owned dof at each
-/// position, empty where the dofs are numbered by lines (the active dofs,
-/// number_by_radial_lines: the position is the index).
-struct RadialLines
-{
-  std::vector<unsigned int> order, start, at;
-  unsigned int size() const { return order.size(); }
-  /// the owned index at line position p
-  unsigned int index(const unsigned int p) const { return at.empty() ? p : at[p]; }
-};
-
 /// The radial lines of the owned dofs of `level` (numbers::invalid_unsigned_int: the active
 /// dofs), from the support points: sorted by angle, then radius.
 RadialLines find_radial_lines(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping,
@@ -73,7 +61,8 @@ RadialLines find_radial_lines(const DoFHandler<2> &dof_handler, const Mapping<2>
   {
     fe_values.reinit(cell);
     for (unsigned int i = 0; i < dofs.size(); ++i)
-      if (owned.is_element(dofs[i]))
+      // a dof shared by several cells is keyed once (its support point is the same)
+      if (owned.is_element(dofs[i]) && key[owned.index_within_set(dofs[i])].first < 0)
       {
         const Point<2> &x = fe_values.quadrature_point(i);
         // angles are multiples of 2 pi / (k N_theta): 2^24 keys a turn separate them
@@ -126,189 +115,6 @@ std::vector<types::global_dof_index> numbers_by_lines(const IndexSet &owned,
   return numbers;
 }
 
-/// The lines of a level that keeps deal.II's numbering: the owned dof at each line position.
-void index_by_position(RadialLines &lines)
-{
-  lines.at.resize(lines.order.size());
-  for (unsigned int i = 0; i < lines.order.size(); ++i)
-    lines.at[lines.order[i]] = i;
-}
-
-/// Line Jacobi, x = B^-1 b with B the block diagonal of A over the radial lines (a banded
-/// Cholesky factorisation LDL^T of each line block): the preconditioner the Chebyshev smoother
-/// is wrapped around. The cells of the annulus are long in theta (up to ~45:1 at Ntheta/Nr = 1),
-/// so A couples a dof far more strongly along r than along theta; a point smoother leaves the
-/// error that oscillates in theta and is smooth in r, which the coarser levels cannot see (CG
-/// iterations 12 at Ntheta/Nr = 32 but 93 at Ntheta/Nr = 1 with point Jacobi, measured).
-/// Solving each radial line exactly removes that coupling from the smoother, the standard
-/// remedy for a strong coupling in one mesh direction (Trottenberg, Oosterlee & Schueller 2001,
-/// ch. 5). Lines cut by a rank boundary are solved in pieces.
-class LineJacobi
-{
-public:
-  void initialize(const MatrixType &A, const RadialLines &lines_in)
-  {
-    lines = &lines_in;
-    const Epetra_CrsMatrix &E = A.trilinos_matrix();
-    const unsigned int n = lines->size();
-    // the band and the factors are kept by line position (the owned index where the dofs are
-    // numbered by lines; else the vectors are gathered into that order for the solve)
-    const bool permuted = !lines->at.empty();
-    if (permuted)
-      work.resize(n);
-    std::vector<unsigned int> line_of(n);
-    for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
-    {
-      for (unsigned int p = lines->start[k]; p < lines->start[k + 1]; ++p)
-        line_of[p] = k;
-    }
-    // the row of each column (-1: not owned), looked up once per column instead of per entry
-    std::vector<int> row_of_column(E.ColMap().NumMyElements());
-    for (unsigned int c = 0; c < row_of_column.size(); ++c)
-      row_of_column[c] = E.RowMap().LID(E.ColMap().GID(c));
-    // f(p, q, A_ij) for the entries of A that couple two dofs i, j of one line, at the line
-    // positions p, q
-    auto for_each_line_entry = [&](const auto &f)
-    {
-      for (unsigned int p = 0; p < n; ++p)
-      {
-        int count;
-        double *values;
-        int *columns;
-        E.ExtractMyRowView(int(lines->index(p)), count, values, columns);
-        for (int c = 0; c < count; ++c)
-        {
-          const int j = row_of_column[columns[c]];
-          if (j < 0)
-            continue;
-          const unsigned int q = permuted ? lines->order[j] : unsigned(j);
-          if (line_of[q] == line_of[p])
-            f(p, q, values[c]);
-        }
-      }
-    };
-    // bandwidth of the line blocks (the element degree on the annulus)
-    bandwidth = 0;
-    for_each_line_entry([this](const unsigned int i, const unsigned int j, double)
-                        { bandwidth = std::max(bandwidth, i > j ? i - j : j - i); });
-    const unsigned int w = bandwidth + 1;
-    band.assign(std::size_t(n) * w, 0.0); // band[p * w + d] = A(p, p - d)
-    for_each_line_entry(
-        [this, w](const unsigned int i, const unsigned int j, const double value)
-        {
-          if (j <= i)
-            band[std::size_t(i) * w + (i - j)] += value;
-        });
-    // LDL^T of each line block, in place: band[p w] = 1 / D_p, band[p w + d] = L(p, p - d).
-    for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
-    {
-      const unsigned int first = lines->start[k], last = lines->start[k + 1];
-      for (unsigned int p = first; p < last; ++p)
-      {
-        double *row = &band[std::size_t(p) * w];
-        const unsigned int reach = std::min(bandwidth, p - first);
-        for (unsigned int d = reach; d >= 1; --d)
-        {
-          const unsigned int q = p - d; // L(p, q) = (A(p, q) - sum_m L(p, m) D_m L(q, m)) / D_q
-          const double *row_q = &band[std::size_t(q) * w];
-          double sum = row[d];
-          for (unsigned int e = d + 1; e <= reach; ++e)
-            sum -= row[e] * row_q[e - d] / band[std::size_t(p - e) * w];
-          row[d] = sum * row_q[0];
-        }
-        double diagonal = row[0];
-        for (unsigned int d = 1; d <= reach; ++d)
-          diagonal -= row[d] * row[d] / band[std::size_t(p - d) * w];
-        row[0] = 1 / diagonal; // D_p^-1
-      }
-    }
-  }
-
-  void vmult(VectorType &dst, const VectorType &src) const
-  {
-    if (lines->at.empty())
-      solve(dst.begin(), src.begin());
-    else
-    {
-      // in line order, then back (the same operations as on a level numbered by lines)
-      const double *b = src.begin();
-      for (unsigned int p = 0; p < work.size(); ++p)
-        work[p] = b[lines->at[p]];
-      solve(work.data(), work.data());
-      double *x = dst.begin();
-      for (unsigned int p = 0; p < work.size(); ++p)
-        x[lines->at[p]] = work[p];
-    }
-  }
-
-private:
-  void solve(double *x, const double *b) const
-  {
-    switch (bandwidth)
-    {
-    case 1:
-      solve<1>(x, b);
-      break;
-    case 2:
-      solve<2>(x, b);
-      break;
-    case 3:
-      solve<3>(x, b);
-      break;
-    default:
-      solve<0>(x, b);
-    }
-  }
-
-  /// x = (L D L^T)^-1 b line by line: L y = b forward, then x = D^-1 y - L^T x backward (the
-  /// scaling by D^-1 done in the backward sweep, the same operations in the same order as three
-  /// separate sweeps). B: the bandwidth as a constant (the rows past the first B of a line
-  /// have a full band, an unrolled loop); 0: `bandwidth` at run time.
-  template <unsigned int B>
-  void solve(double *x, const double *b) const
-  {
-    const unsigned int band_width = B > 0 ? B : bandwidth, w = band_width + 1;
-    const double *band_data = band.data();
-    for (unsigned int k = 0; k + 1 < lines->start.size(); ++k)
-    {
-      const unsigned int first = lines->start[k], last = lines->start[k + 1];
-      for (unsigned int p = first; p < last; ++p) // L y = b
-      {
-        const double *row = band_data + std::size_t(p) * w;
-        double v = b[p];
-        if (B > 0 && p - first >= B)
-          for (unsigned int d = 1; d <= B; ++d)
-            v -= row[d] * x[p - d];
-        else
-        {
-          const unsigned int reach = std::min(band_width, p - first);
-          for (unsigned int d = 1; d <= reach; ++d)
-            v -= row[d] * x[p - d];
-        }
-        x[p] = v;
-      }
-      for (unsigned int p = last; p-- > first;) // x = D^-1 y - L^T x
-      {
-        double v = x[p] * band_data[std::size_t(p) * w];
-        if (B > 0 && last - 1 - p >= B)
-          for (unsigned int d = 1; d <= B; ++d)
-            v -= band_data[std::size_t(p + d) * w + d] * x[p + d];
-        else
-        {
-          const unsigned int reach = std::min(band_width, last - 1 - p);
-          for (unsigned int d = 1; d <= reach; ++d)
-            v -= band_data[std::size_t(p + d) * w + d] * x[p + d];
-        }
-        x[p] = v;
-      }
-    }
-  }
-
-  const RadialLines *lines = nullptr;
-  unsigned int bandwidth = 0;
-  std::vector<double> band;
-  mutable std::vector<double> work; // the vector in line order (a level not numbered by lines)
-};
 using Smoother = PreconditionChebyshev<MatrixType, VectorType, LineJacobi>;
 /// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator
 /// (scaled by 1.2 below). 6 and 12 steps gave the same CG iterations at 1.05e6 Q2 dofs (9) and
@@ -551,11 +357,20 @@ struct FilmMultigrid::Data
 {
   MGConstrainedDoFs constrained_dofs;
   std::vector<AffineConstraints<double>> level_constraints;
-  std::vector<char> by_position; // level matrix with CellSparsity's pattern
+  /// [l]: level l's matrix has CellSparsity's pattern (set in setup: one rank, boundary
+  /// constraints only), so prepare adds the cells without boundary dofs by position.
+  std::vector<char> by_position;
   std::vector<RadialLines> lines;
   MGLevelObject<MatrixType> level_matrices; // the assembled ones
   LevelMatrices operators;
+  /// The finest level is the system (setup): its operator the system matrix, its vectors the
+  /// system's, its lines the active ones, the transfer's last rows the active dofs.
   bool fine_is_system = false;
+  /// Level l is the system itself (not assembled, no level constraints or matrix of its own).
+  bool is_system_level(const unsigned int l) const
+  {
+    return fine_is_system && l + 1 == level_matrices.n_levels();
+  }
   std::unique_ptr<MGTransferPrebuilt<VectorType>> transfer; // !fine_is_system
   LevelTransfer level_transfer;                             // fine_is_system
   ChebyshevSmoother smoother;
@@ -656,7 +471,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   auto number_level = [&](const unsigned int l)
   {
     data->lines[l] = find_radial_lines(*dof_handler, *mapping, l);
-    index_by_position(data->lines[l]);
+    data->lines[l].index_by_position();
   };
   for (unsigned int l = 0; l < n_levels; ++l)
     if (l < fine || !fine_active)
@@ -688,7 +503,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   data->level_matrices.resize(0, fine);
   for (unsigned int l = 0; l < n_levels; ++l)
   {
-    if (l == fine && data->fine_is_system)
+    if (data->is_system_level(l))
       continue; // the system matrix, with the system's constraints
     IndexSet relevant;
     DoFTools::extract_locally_relevant_level_dofs(*dof_handler, l, relevant);
@@ -702,16 +517,9 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
     data->by_position[l] = CellSparsity::applies(owned, c, comm);
     if (data->by_position[l])
     {
-      const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
-      std::vector<types::global_dof_index> dofs(n);
-      std::vector<unsigned int> cell_dofs;
-      cell_dofs.reserve(std::size_t(tria.n_cells(l)) * n);
-      for (const auto &cell : dof_handler->mg_cell_iterators_on_level(l))
-      {
-        cell->get_mg_dof_indices(dofs);
-        cell_dofs.insert(cell_dofs.end(), dofs.begin(), dofs.end());
-      }
-      CellSparsity::reinit(data->level_matrices[l], owned, cell_dofs, n, c, true, comm);
+      CellSparsity::reinit(data->level_matrices[l], owned,
+                           CellSparsity::level_cell_dofs(*dof_handler, l),
+                           dof_handler->get_fe().n_dofs_per_cell(), c, true, comm);
       continue;
     }
     DynamicSparsityPattern dsp(relevant);
@@ -759,7 +567,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
   PolarCellValues polar(*mapping, fe, quadrature);
   for (unsigned int l = 0; l < n_levels; ++l)
   {
-    if (l == fine && data->fine_is_system)
+    if (data->is_system_level(l))
       continue;
     auto &matrix = data->level_matrices[l];
     matrix = 0;
@@ -789,10 +597,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
         }
         cell->get_mg_dof_indices(dofs);
         // a cell without boundary dofs: distribute_local_to_global's sums, by position
-        bool by_position = data->by_position[l];
-        for (unsigned int i = 0; i < n && by_position; ++i)
-          by_position = !data->level_constraints[l].is_constrained(dofs[i]);
-        if (by_position)
+        if (data->by_position[l] && CellSparsity::unconstrained(data->level_constraints[l], dofs))
           CellSparsity::add(matrix, cell_matrix, dofs);
         else
           data->level_constraints[l].distribute_local_to_global(cell_matrix, dofs, matrix);
@@ -804,7 +609,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
   data->operators.matrices.resize(n_levels);
   for (unsigned int l = 0; l < n_levels; ++l)
     data->operators.matrices[l] =
-        (l == fine && data->fine_is_system) ? &fine_matrix : &data->level_matrices[l];
+        data->is_system_level(l) ? &fine_matrix : &data->level_matrices[l];
 
   // Smoothers: Chebyshev around radial line Jacobi, spectrum estimated by a few CG steps.
   data->smoother.smoothers.resize(0, fine);

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
@@ -50,6 +51,11 @@ public:
           values[k] = fe.shape_value(k, unit);
         shape_values.push_back(std::move(values));
       }
+    // point_values writes into arrays of max_components
+    AssertThrow(
+        get_names().size() <= max_components,
+        ExcMessage("FilmPostprocessor: " + std::to_string(get_names().size()) +
+                   " fields, more than max_components = " + std::to_string(max_components)));
   }
   void evaluate_scalar_field(const DataPostprocessorInputs::Scalar<2> &in,
                              std::vector<Vector<double>> &out) const override
@@ -173,41 +179,16 @@ struct DataSet
   bool postprocessed = false;
 };
 
-/// The point data of `sets` (the postprocessor's vectors from its component interpretation).
-output::VtuFields vtu_fields_of(const std::vector<DataSet> &sets, const FilmPostprocessor &film)
-{
-  std::vector<std::string> names;
-  std::vector<std::tuple<unsigned int, unsigned int, std::string,
-                         DataComponentInterpretation::DataComponentInterpretation>>
-      ranges;
-  for (const DataSet &set : sets)
-    if (!set.postprocessed)
-      names.push_back(set.name);
-    else
-    {
-      const auto film_names = film.get_names();
-      const auto kinds = film.get_data_component_interpretation();
-      const unsigned int first = names.size();
-      for (unsigned int k = 0; k < film_names.size(); ++k)
-      {
-        if (kinds[k] == DataComponentInterpretation::component_is_part_of_vector &&
-            (k == 0 || kinds[k - 1] != kinds[k] || film_names[k - 1] != film_names[k]))
-          ranges.emplace_back(first + k, first + k + 1, film_names[k], kinds[k]);
-        names.push_back(film_names[k]);
-      }
-    }
-  return output::VtuFields::from(names, ranges);
-}
-
 /// Fills `patch` as DataOut::build_patches(mapping, k, curved_inner_cells) does for `cell`
 /// (the (k + 1)^2 lattice points (i/k, j/k), i fastest, their mapped positions as the last two
 /// rows of the data), from `values` reinitialised on the cell with that lattice as quadrature:
 /// FEValues, or PolarCellValues (the row's first cell turned).
+/// `film_used`: whether one of `sets` is the postprocessor's.
 template <class Values>
 void fill_patch(const Values &values, const DoFHandler<2>::active_cell_iterator &cell,
                 const std::vector<DataSet> &sets, const FilmPostprocessor &film,
-                const unsigned int n_sets, const unsigned int degree, const unsigned int n_q,
-                DataOutBase::Patch<2, 2> &patch)
+                const bool film_used, const unsigned int n_sets, const unsigned int degree,
+                const unsigned int n_q, DataOutBase::Patch<2, 2> &patch)
 {
   const unsigned int n = values.get_fe().n_dofs_per_cell();
   patch.n_subdivisions = degree;
@@ -217,8 +198,6 @@ void fill_patch(const Values &values, const DoFHandler<2>::active_cell_iterator 
     patch.vertices[v] = cell->vertex(v);
   patch.data.reinit(n_sets + 2, n_q);
   Vector<double> nodal(n), nodal_void, pressure(n);
-  const bool film_used =
-      std::any_of(sets.begin(), sets.end(), [](const DataSet &d) { return d.postprocessed; });
   if (film_used && film.needs_void_fraction())
   {
     nodal_void.reinit(n);
@@ -267,11 +246,11 @@ void fill_patch(const Values &values, const DoFHandler<2>::active_cell_iterator 
 /// The patches of build_patches(mapping, k, curved_inner_cells) on the built-in annulus, where
 /// every cell of a radial row is the row's first cell turned about the axis: the mapped output
 /// points and the shape gradients there come from one FEValues evaluation per row
-/// (PolarCellValues), which removes the mapping at the 9 (k = 2) output points of every cell,
-/// most of build_patches' time. A cell PolarCellValues cannot prove to be such a rotation (its
-/// vertices checked; the mesh of a surface-feature layout, say) gets FEValues, i.e. what
-/// build_patches computes for it. The values equal build_patches' to the round-off of the
-/// rotation (tests/regression/film_output_patches.cc).
+/// (PolarCellValues), which removes the per-cell mapping and gradient transformation (measured:
+/// 0.13-0.15 s of the 0.78 s of build_patches with every field, doc/performance.md). A cell
+/// PolarCellValues cannot prove to be such a rotation (its vertices checked; the mesh of a
+/// surface-feature layout, say) gets FEValues, i.e. what build_patches computes for it. The values
+/// equal build_patches' to the round-off of the rotation (tests/regression/film_output_patches.cc).
 std::vector<DataOutBase::Patch<2, 2>>
 polar_patches(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping,
               const unsigned int degree, const std::vector<DataSet> &sets,
@@ -282,8 +261,13 @@ polar_patches(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping,
   PolarCellValues polar(mapping, fe, lattice);
   FEValues<2> fe_values(mapping, fe, lattice,
                         update_values | update_gradients | update_quadrature_points);
+  const bool film_used =
+      std::any_of(sets.begin(), sets.end(), [](const DataSet &d) { return d.postprocessed; });
+  const auto *distributed =
+      dynamic_cast<const parallel::TriangulationBase<2> *>(&dof_handler.get_triangulation());
   std::vector<DataOutBase::Patch<2, 2>> patches;
-  patches.reserve(dof_handler.get_triangulation().n_active_cells()); // at least the owned
+  patches.reserve(distributed ? distributed->n_locally_owned_active_cells()
+                              : dof_handler.get_triangulation().n_active_cells());
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
@@ -291,11 +275,11 @@ polar_patches(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping,
       DataOutBase::Patch<2, 2> &patch = patches.back();
       patch.patch_index = patches.size() - 1;
       if (polar.reinit(cell))
-        fill_patch(polar, cell, sets, film, n_sets, degree, lattice.size(), patch);
+        fill_patch(polar, cell, sets, film, film_used, n_sets, degree, lattice.size(), patch);
       else
       {
         fe_values.reinit(cell);
-        fill_patch(fe_values, cell, sets, film, n_sets, degree, lattice.size(), patch);
+        fill_patch(fe_values, cell, sets, film, film_used, n_sets, degree, lattice.size(), patch);
       }
     }
   return patches;
@@ -439,27 +423,23 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   // k^2 straight sub-quads. On the built-in annulus the patches come from the polar rows
   // (polar_patches); deal.II's build_patches makes them for a mesh file, or with polar_rows
   // false (the tests compare the two routes).
+  // The names and vector ranges of the data sets come from DataOut on both routes (they need
+  // only the data vectors added, not build_patches): one source of names.
   FieldDataOut data_out;
+  data_out.attach_dof_handler(s.dof_handler);
+  for (const DataSet &set : sets)
+    if (set.postprocessed)
+      data_out.add_data_vector(*set.vector, postprocessor);
+    else
+      data_out.add_data_vector(*set.vector, set.name);
+  const output::VtuFields vtu_fields = data_out.fields();
   std::vector<DataOutBase::Patch<2, 2>> polar;
   const bool use_polar_rows = s.mesh_parameters.mesh_file.empty() && s.polar_rows;
-  output::VtuFields vtu_fields;
   if (use_polar_rows)
-  {
-    vtu_fields = vtu_fields_of(sets, postprocessor);
     polar = polar_patches(s.dof_handler, *s.mapping, s.polynomial_degree, sets, postprocessor,
                           vtu_fields.names.size());
-  }
   else
-  {
-    data_out.attach_dof_handler(s.dof_handler);
-    for (const DataSet &set : sets)
-      if (set.postprocessed)
-        data_out.add_data_vector(*set.vector, postprocessor);
-      else
-        data_out.add_data_vector(*set.vector, set.name);
     data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
-    vtu_fields = data_out.fields();
-  }
   const std::vector<DataOutBase::Patch<2, 2>> &patches =
       use_polar_rows ? polar : data_out.get_patches();
   // Each rank writes its own piece, LZ4-compressed raw binary (output::write_vtu_piece, several

@@ -911,10 +911,11 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
   // The Jacobian of a fixed set takes column j from P A where node j keeps its pressure, else
   // from G, so that of the set (set_a, set_v) is the factorised one plus a rank-k term, k the
   // nodes whose set differs: A1 = A0 + U E^T with U(:, d) = +-(P A - G)(:, j_d). A block solve
-  // of k + 1 columns with A0's factors and a k x k system cost less than a new factorisation
-  // for small k (doc/performance.md, Session 11). The accepted round (no flips) is one of these
-  // at most: solve_column_update checks the true residual of A1, so the answer is an exact
-  // solve to round-off.
+  // of k + 1 columns with A0's factors (one block solve: MUMPS in one call, KLU as a
+  // multivector) and a k x k system cost less than a new factorisation for small k
+  // (doc/performance.md, Session 11). The accepted round (no flips) may be one of these:
+  // solve_column_update checks the backward error of A1's true residual <= 128 u, else the round
+  // factorises; the converged state is verified by the nonlinear residual.
   SparseDirect *lu = s.linear_system_solver.factorization();
   if (factored_keep_pressure.empty() || !lu || row_gid.empty() ||
       s.linear_system_solver.statistics().factorizations != factored_count)
@@ -957,13 +958,13 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
                  }
                });
   // C is refused below rcond sqrt(u): its solve would lose more than half the digits. The
-  // backward error bound 2^-40 (9e-13) is a guard against a failed update, far above the
-  // round-off of a backward-stable solve (the factorised rounds' solves measure 7e-19..4e-17,
-  // the updates 4e-19..4e-17 on the tilted seal at 3.3e4 and 1.3e5 dofs)
+  // backward error bound 128 u (2^-46, 1.4e-14; u = 2^-53) is a guard against a failed update, with
+  // a margin over the round-off of a backward-stable solve (the factorised rounds' solves measure
+  // 7e-19..4e-17, the updates 4e-19..4e-17 on the tilted seal at 3.3e4 and 1.3e5 dofs)
   double rcond, backward_error;
   const LowRankSolve result = solve_column_update(*lu, s.system_matrix, columns, std::move(U), b, x,
                                                   std::sqrt(std::numeric_limits<double>::epsilon()),
-                                                  0x1p-40, rcond, backward_error);
+                                                  0x1p-46, rcond, backward_error);
   if (result != LowRankSolve::solved)
     return false;
   ++low_rank_updates;

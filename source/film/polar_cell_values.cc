@@ -43,6 +43,11 @@ bool PolarCellValues::reinit(const Triangulation<2>::cell_iterator &cell)
     fe_values.reinit(cell);
     fresh.points = fe_values.get_quadrature_points();
     fresh.JxW = fe_values.get_JxW_values();
+    for (const Point<2> &x : fresh.points)
+    {
+      fresh.radii.push_back(x.norm());
+      fresh.angles.push_back(std::atan2(x[1], x[0]));
+    }
     fresh.grads.resize(std::size_t(n) * n_q);
     fresh.gram.resize(std::size_t(n) * n * n_q);
     if (values.empty())
@@ -82,6 +87,7 @@ bool PolarCellValues::reinit(const Triangulation<2>::cell_iterator &cell)
   }
   if (c != 1 || s != 0)
     ++turned;
+  cell_angle = std::atan2(s, c);
   for (unsigned int q = 0; q < n_q; ++q)
   {
     const Point<2> &x = row->points[q];

@@ -22,7 +22,9 @@ namespace sealfe
 namespace
 {
 /// Amesos_Mumps with a solve of several right-hand sides in one MUMPS call (NRHS > 1): Amesos
-/// calls MUMPS once per column of a multivector.
+/// calls MUMPS once per column of a multivector. It relies on Amesos_Mumps's protected members
+/// (the MUMPS structure MDS), an implementation detail of the Trilinos version it was written for
+/// (Debian 12's Trilinos 13.2): recheck it when Trilinos changes.
 class BlockMumps : public Amesos_Mumps
 {
 public:
@@ -146,8 +148,8 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   const std::size_t n = matrix.m(), k = columns.size();
   if (U.size() != n * k)
     throw std::logic_error("solve_column_update: U must hold n x k values");
-  // [y Z] = A0^-1 [b U], one block solve, in U's storage (n x (k + 1) values: 260 MB at 1e6
-  // unknowns and k = 32)
+  // [y Z] = A0^-1 [b U], one block solve, in U's storage (n x (k + 1) values: 66 MB at the
+  // caller's limit of 2.5e5 unknowns and k = 32)
   std::vector<double> X(std::move(U));
   X.resize(n * (k + 1));
   std::copy_backward(X.begin(), X.begin() + n * k, X.end());

@@ -4,11 +4,22 @@
 // point array, read back through VTK, to the round-off of the Float32 arrays. The case has every
 // field: a tilted, wavy film with rough faces (Patir & Cheng flow factors in the flux and the
 // expected gap, a rougher rotor for a shear flow factor, GW/CEB contact pressure) and JFO
-// cavitation with a cavity, whose void fraction enters the flux. A wrong rotation of the points or
-// of the gradients moves a point by a fraction of the radius and changes h and the flux at it by
-// O(1).
+// cavitation with a cavity, whose void fraction enters the flux. A wrong rotation of the points
+// moves a point by a fraction of the radius and changes h at it by O(1); a wrong rotation of the
+// gradients changes the pressure-driven part of the flux (~3 % of it here). So that the
+// comparison is of the fast path and not of FEValues with itself, the test also checks that
+// PolarCellValues takes every cell of this mesh from its row (none refused: polar_patches falls
+// back to FEValues only for refused cells).
 #include <sealfe/film/film_output.h>
 #include <sealfe/film/reynolds_solver.h>
+
+#include <sealfe/film/annulus_mesh.h>
+#include <sealfe/film/polar_cell_values.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q.h>
 
 #include <gtest/gtest.h>
 
@@ -23,6 +34,8 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 using namespace sealfe;
@@ -48,6 +61,30 @@ std::pair<double, double> difference(vtkDataArray *a, vtkDataArray *b)
       scale = std::max(scale, std::abs(a->GetComponent(i, c)));
     }
   return {diff, scale};
+}
+
+/// Cells of the mesh of `s` (built the way the solver builds it) that PolarCellValues, with
+/// polar_patches' lattice, takes from their row; `turned`: those at a nonzero angle, `rows`:
+/// FEValues evaluations.
+struct RowCount
+{
+  unsigned int taken = 0, refused = 0, turned = 0, rows = 0;
+};
+RowCount count_rows(const FilmSettings &s)
+{
+  using namespace dealii;
+  parallel::distributed::Triangulation<2> tria(MPI_COMM_WORLD);
+  s.mesh.create(tria, s.geometry.inner_radius, s.geometry.outer_radius);
+  const FE_Q<2> fe(s.polynomial_degree);
+  const MappingQ<2> mapping(s.polynomial_degree);
+  PolarCellValues polar(mapping, fe, QIterated<2>(QTrapezoid<1>(), s.polynomial_degree));
+  RowCount count;
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->is_locally_owned())
+      ++(polar.reinit(cell) ? count.taken : count.refused);
+  count.turned = polar.n_turned();
+  count.rows = polar.n_rows();
+  return count;
 }
 
 /// Tilted, wavy, rough faces with asperity contact and a JFO cavity.
@@ -77,10 +114,13 @@ FilmSettings every_field_settings(const unsigned int degree)
 
 TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
 {
-  const fs::path root = fs::temp_directory_path() / "sealfe_film_output_patches";
+  // the pid: other worktrees run this test at the same time
+  const fs::path root =
+      fs::temp_directory_path() / ("sealfe_film_output_patches_" + std::to_string(getpid()));
   for (const unsigned int degree : {1u, 2u, 3u})
   {
-    ReynoldsSolver s(every_field_settings(degree), MPI_COMM_WORLD);
+    const FilmSettings settings = every_field_settings(degree);
+    ReynoldsSolver s(settings, MPI_COMM_WORLD);
     const FilmLoads loads = s.run();
     ASSERT_GT(loads.cavitated_fraction, 0.02) << "degree " << degree; // the case has a cavity
     const fs::path polar = root / ("polar" + std::to_string(degree)),
@@ -97,6 +137,13 @@ TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
     const auto reader_a = read_piece(polar), reader_b = read_piece(generic);
     vtkUnstructuredGrid *a = reader_a->GetOutput(), *b = reader_b->GetOutput();
     const std::size_t n_cells = s.mesh().radial_cells * s.mesh().circumferential_cells;
+    // the fast path runs: every cell taken from its row, all but one per row turned (a row whose
+    // key straddles a rounding step may have a second first cell: at most 2 per radial row)
+    const RowCount rows = count_rows(settings);
+    EXPECT_EQ(rows.refused, 0u) << "degree " << degree;
+    EXPECT_EQ(std::size_t(rows.taken), n_cells) << "degree " << degree;
+    EXPECT_LE(rows.rows, 2 * s.mesh().radial_cells) << "degree " << degree;
+    EXPECT_GE(std::size_t(rows.turned), n_cells - rows.rows) << "degree " << degree;
     ASSERT_EQ(std::size_t(a->GetNumberOfCells()), n_cells);
     ASSERT_EQ(a->GetNumberOfCells(), b->GetNumberOfCells());
     ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());

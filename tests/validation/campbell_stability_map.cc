@@ -62,32 +62,6 @@ subsection Stability
          "end\n";
 }
 
-/// A CSV of numbers as columns keyed by the name without its unit (empty field: NaN).
-std::map<std::string, std::vector<double>> read_csv(const fs::path &file)
-{
-  std::istringstream in(read_file(file));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  {
-    std::istringstream h(line);
-    for (std::string f; std::getline(h, f, ',');)
-      names.push_back(f.substr(0, f.find(" [")));
-  }
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line))
-  {
-    std::istringstream r(line + ",");
-    std::string f;
-    for (const auto &name : names)
-    {
-      std::getline(r, f, ',');
-      columns[name].push_back(f.empty() ? std::nan("") : std::stod(f));
-    }
-  }
-  return columns;
-}
-
 double critical_speed(const double support_stiffness)
 {
   const sealfe::GreenEtsionCoefficients film(ri, ro, C0, beta_star, mu, dp);
@@ -103,7 +77,7 @@ TEST(CampbellDiagram, DampingRatioChangesSignAtTheFmsThreshold)
   const fs::path dir = fresh_directory("sealfe_campbell_fms");
   const CliResult run = run_sealfe(dir, "stability", prm(""));
   ASSERT_EQ(run.status, 0) << run.err;
-  auto m = read_csv(dir / "out" / "stability_campbell.csv");
+  auto m = read_csv(read_file(dir / "out" / "stability_campbell.csv"));
   const double w_cr = critical_speed(ks), h = (to - from) / (points - 1);
 
   // per swept speed: the least damped mode (smallest damping ratio) and its whirl
@@ -162,7 +136,7 @@ TEST(StabilityMap, ThresholdCurveFollowsTheFmsClosedForm)
                                    prm("  set Second parameter = Stator ring support stiffness\n"
                                        "  set Second parameter values = 0 : 4000 : 11\n"));
   ASSERT_EQ(run.status, 0) << run.err;
-  auto sweep = read_csv(dir / "out" / "stability_sweep.csv");
+  auto sweep = read_csv(read_file(dir / "out" / "stability_sweep.csv"));
   ASSERT_EQ(sweep["stator_ring_support_stiffness"].size(), 11u);
   for (std::size_t i = 0; i < 11; ++i)
   {
@@ -173,7 +147,7 @@ TEST(StabilityMap, ThresholdCurveFollowsTheFmsClosedForm)
     EXPECT_EQ(sweep["stable_interval_count"][i], 1);
   }
 
-  auto map = read_csv(dir / "out" / "stability_map.csv");
+  auto map = read_csv(read_file(dir / "out" / "stability_map.csv"));
   ASSERT_EQ(map["swept_speed"].size(), 11u * points);
   unsigned int checked = 0;
   for (std::size_t i = 0; i < map["swept_speed"].size(); ++i)

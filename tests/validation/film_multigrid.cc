@@ -96,11 +96,12 @@ TEST(FilmMultigrid, AutoPicksItAboveTheDirectLimitOnTheBuiltInMesh)
   using M = FilmLinearSolver::Method;
   const auto automatic = FilmSettings::LinearSolver::automatic;
   const unsigned int big = FilmLinearSolver::direct_solver_limit;
-  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big, true), M::cg_gmg);
-  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big, false), M::cg_amg); // mesh file
-  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big - 1, true), M::direct);
-  EXPECT_EQ(FilmLinearSolver::choose(automatic, false, big, true), M::direct); // Newton systems
-  EXPECT_EQ(FilmLinearSolver::choose(FilmSettings::LinearSolver::cg_amg, true, big, true),
+  // one rank
+  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big, true, 1), M::cg_gmg);
+  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big, false, 1), M::cg_amg); // mesh file
+  EXPECT_EQ(FilmLinearSolver::choose(automatic, true, big - 1, true, 1), M::direct);
+  EXPECT_EQ(FilmLinearSolver::choose(automatic, false, big, true, 1), M::direct); // Newton systems
+  EXPECT_EQ(FilmLinearSolver::choose(FilmSettings::LinearSolver::cg_amg, true, big, true, 1),
             M::cg_amg);
 }
 

@@ -55,6 +55,8 @@ TEST(PolarCellValues, EqualFEValuesOnEveryCellOfEveryLevel)
     for (const auto &cell : tria.active_cell_iterators())
       h_r = std::min(h_r, cell->vertex(1).norm() - cell->vertex(0).norm());
     const double tol = 1000 * 1.1e-16 * ro / h_r;
+    double worst_r = 0, worst_angle = 0;
+    bool in_range = true;
     double worst_x = 0, worst_jxw = 0, worst_grad = 0, worst_gram = 0, worst_value = 0;
     unsigned int cells = 0;
     for (unsigned int l = 0; l < tria.n_global_levels(); ++l)
@@ -75,6 +77,14 @@ TEST(PolarCellValues, EqualFEValuesOnEveryCellOfEveryLevel)
         {
           worst_x = std::max(
               worst_x, fe_values.quadrature_point(q).distance(polar.quadrature_point(q)) / ro);
+          // radius and angle of the point from the row's (norm, atan2 of FEValues' point); the
+          // angle compared modulo 2 pi (at +-pi round-off may pick the other end of the range)
+          const Point<2> &x = fe_values.quadrature_point(q);
+          worst_r = std::max(worst_r, std::abs(x.norm() - polar.radius(q)) / ro);
+          worst_angle = std::max(
+              worst_angle,
+              std::abs(std::remainder(std::atan2(x[1], x[0]) - polar.angle(q), 2 * numbers::PI)));
+          in_range = in_range && polar.angle(q) > -numbers::PI && polar.angle(q) <= numbers::PI;
           worst_jxw = std::max(worst_jxw, std::abs(fe_values.JxW(q) - polar.JxW(q)) / jxw_scale);
           for (unsigned int i = 0; i < n; ++i)
           {
@@ -95,6 +105,10 @@ TEST(PolarCellValues, EqualFEValuesOnEveryCellOfEveryLevel)
     // every cell but the first of each row given by turning
     EXPECT_EQ(polar.n_turned() + polar.n_rows(), cells) << "degree " << degree;
     EXPECT_LT(worst_x, 1e-13) << "degree " << degree;
+    // a point error e moves the radius by <= e and the angle by <= e / r (r >= ri)
+    EXPECT_LT(worst_r, 1e-13) << "degree " << degree;
+    EXPECT_LT(worst_angle, 1e-13 * ro / ri) << "degree " << degree;
+    EXPECT_TRUE(in_range) << "degree " << degree;
     EXPECT_LT(worst_jxw, tol) << "degree " << degree;
     EXPECT_EQ(worst_value, 0.0) << "degree " << degree; // FE_Q: the same numbers on every cell
     EXPECT_LT(worst_grad, tol) << "degree " << degree;

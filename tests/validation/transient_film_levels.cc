@@ -64,27 +64,6 @@ subsection Ramps
 end
 )";
 
-/// Columns of a CSV with a header line, by the name before " [unit]".
-std::map<std::string, std::vector<double>> read_csv(const std::string &text)
-{
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::istringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');)
-    names.push_back(cell.substr(0, cell.find(" [")));
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line))
-  {
-    std::istringstream row(line);
-    std::string cell;
-    for (unsigned int i = 0; i < names.size() && std::getline(row, cell, ','); ++i)
-      columns[names[i]].push_back(std::atof(cell.c_str()));
-  }
-  return columns;
-}
-
 } // namespace
 
 // An axial creep at the reference conditions from a clearance of 0.24 um (the equilibrium is at

@@ -71,7 +71,7 @@ public:
   /// direct below direct_solver_limit and cg-amg above, whatever the rank count.
   static Method choose(FilmSettings::LinearSolver choice, bool symmetric,
                        dealii::types::global_dof_index n, bool multigrid_available,
-                       unsigned int n_ranks = 1);
+                       unsigned int n_ranks);
   /// The geometric multigrid of the mesh and the function that rebuilds its level operators for
   /// the prepared matrix (called where a factorisation would be). Null: no hierarchy.
   void set_multigrid(const FilmMultigrid *multigrid, std::function<void()> prepare_levels);

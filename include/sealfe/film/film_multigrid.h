@@ -18,12 +18,21 @@ namespace sealfe
 /// Preconditioner for A p = b, A_ij = int K grad phi_j . grad phi_i with zero Dirichlet rows on
 /// both circles (the full film, its linearisation, rough faces). One V-cycle: the level matrices
 /// are re-discretisations of the same operator on the coarser levels of the mesh (K evaluated at
-/// the level cells' quadrature points), Chebyshev smoothing around radial line Jacobi (each
-/// line of dofs at one angle solved exactly: the cells are long in theta) on every level, KLU
-/// on the coarsest level, prolongation by the finite-element embedding (Epetra matrices built
-/// from the parent cells; MGTransferPrebuilt where the finest level is not the system). The
-/// finest level takes the active numbering and is the system matrix itself (always, so far, on a
-/// globally refined mesh; else it is assembled too).
+/// the level cells' quadrature points), Chebyshev smoothing around radial line Jacobi (LineJacobi,
+/// line_jacobi.h: each line of dofs at one angle solved exactly, the cells being long in theta)
+/// on every level, KLU on the coarsest level, prolongation by the finite-element embedding.
+///
+/// The finest level is the system itself where it can be: its operator is the system matrix,
+/// its vectors the system's, its lines the active ones (number_by_radial_lines), and the last
+/// prolongation matrix takes the active dof numbers of that level's cells as its rows, so the
+/// level's own dofs are never used (that level is never numbered, constrained or assembled).
+/// The coarser levels keep deal.II's level numbering (the line smoother gathers their vectors
+/// into line order). Fallback: where a locally owned active cell is not on the finest level
+/// (a mesh that is not globally refined), the active dofs were not numbered by lines, or the
+/// transfer does not reach every owned active dof from a parent cell its rank sees (possible
+/// on several ranks), the finest level gets its own lines and level matrix like the others and
+/// the transfer is deal.II's MGTransferPrebuilt (copies between the active and level numbers);
+/// every rank takes the same branch. Either way the same prolongation, entry for entry.
 class FilmMultigrid
 {
 public:

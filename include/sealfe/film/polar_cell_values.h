@@ -42,6 +42,15 @@ public:
   }
   const dealii::FiniteElement<2> &get_fe() const { return *fe; }
   const dealii::Point<2> &quadrature_point(const unsigned int q) const { return points[q]; }
+  /// |x_q| and the angle of x_q in (-pi, pi] (atan2), from the row's first cell (the radius is
+  /// the same, the angle turned by the cell's): equal to norm() and atan2 of quadrature_point(q)
+  /// to round-off, without a square root and an atan2 per point.
+  double radius(const unsigned int q) const { return row->radii[q]; }
+  double angle(const unsigned int q) const
+  {
+    const double theta = row->angles[q] + cell_angle;
+    return theta > pi ? theta - 2 * pi : (theta <= -pi ? theta + 2 * pi : theta);
+  }
   double JxW(const unsigned int q) const { return row->JxW[q]; }
   double shape_value(const unsigned int i, const unsigned int q) const
   {
@@ -80,6 +89,7 @@ private:
   {
     std::array<dealii::Point<2>, 4> vertices;
     std::vector<dealii::Point<2>> points;
+    std::vector<double> radii, angles; // of points
     std::vector<double> JxW;
     std::vector<dealii::Tensor<1, 2>> grads; // [q n + i]
     std::vector<double> gram;                // [(q n + i) n + j]
@@ -93,7 +103,9 @@ private:
   std::vector<double> values; // [q n + i], the same on every cell (FE_Q)
   std::map<std::array<long long, 3>, Row> rows;
   const Row *row = nullptr;
-  double c = 1, s = 0; // cos, sin of the angle from the row's first cell to this one
+  double c = 1, s = 0;   // cos, sin of the angle from the row's first cell to this one
+  double cell_angle = 0; // that angle (atan2(s, c))
+  static constexpr double pi = 3.141592653589793238462643;
   std::vector<dealii::Point<2>> points;
   mutable std::vector<dealii::Tensor<1, 2>> grads;
   mutable bool grads_turned = false;

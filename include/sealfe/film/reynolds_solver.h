@@ -90,12 +90,20 @@ public:
     dealii::Tensor<1, 2> c, dc_dh; // Couette flux h_T u + (u1 - u2)/2 sigma phi_s e_theta
     double c_div, dc_div_factor;   // div c, and d(omega_eff)/dh (div of a perturbed c)
     double squeeze, dsqueeze_dht;  // d h_T/dt = h_T'(h) dh/dt, and h_T'(h)
-    double contact_pressure, dcontact_dh;
+    double contact_pressure = 0, dcontact_dh = 0;    // asperity contact (0 without a model)
     double phi_r = 1, phi_theta = 1, phi_s = 0, h_T; // flow factors and expected gap (output)
   };
   LocalFilm local_film(const dealii::Point<2> &x) const;
+  /// The same with r = |x|, theta = atan2(x) and cos, sin of the film's tilt angle given (the
+  /// assembly has them per row and per cell): on the coned, tilted film (no waviness, expression
+  /// or features) h, dh/dtheta and dh/dt then take no sine or cosine per point.
+  LocalFilm local_film(const dealii::Point<2> &x, const double r, const double theta,
+                       const double cos_tilt, const double sin_tilt) const;
   /// The pressure-flow tensor K alone (equal to local_film(x).K, at a fraction of the cost).
   dealii::Tensor<2, 2> pressure_flow(const dealii::Point<2> &x) const;
+  /// The same with cos, sin of the film's tilt angle given (once per level assembly).
+  dealii::Tensor<2, 2> pressure_flow(const dealii::Point<2> &x, const double cos_tilt,
+                                     const double sin_tilt) const;
 
   /// Write pressure, film thickness and the volume flux vector (VTU per rank group + PVTU + PVD)
   /// into `directory`; returns the PVD file name (film_output.h).
@@ -246,6 +254,9 @@ private:
   dealii::AffineConstraints<double> constraints;
   dealii::IndexSet inner_boundary_dofs, outer_boundary_dofs;
   dealii::TrilinosWrappers::SparseMatrix system_matrix;
+  /// system_matrix has CellSparsity's pattern (set by setup_system: one rank, Dirichlet
+  /// constraints only), so the assembly adds the cells without constrained dofs by position.
+  bool matrix_by_position = false;
   dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution, system_rhs;
 
   /// KLU or Krylov + AMG (film_linear_solver.h); mutable: the linearised solves of a const

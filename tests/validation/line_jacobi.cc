@@ -1,0 +1,195 @@
+// LineJacobi (include/sealfe/film/line_jacobi.h), the multigrid's line smoother, on small
+// symmetric matrices with lines of 2-12 dofs and couplings between the lines:
+// - theory: one application is the exact solve of each line's block B (the couplings between
+//   lines left out): for x given and b = B x, x is recovered to the forward error bound of a
+//   Cholesky solve, kappa(B) (4 w + 8) u (band LDL^T of half bandwidth w: backward error
+//   gamma_{w+2}, plus the rounding of b = B x; Higham 2002, 10.1), kappa(B) bounded by
+//   Gershgorin's circles of the blocks;
+// - gather/scatter: on the same matrix numbered otherwise (a permutation of the dofs, as deal.II
+//   numbers a multigrid level) the result is the same permutation of the result on the matrix
+//   numbered by lines, to the bit: the same band and the same operations in the same order.
+// Half bandwidths 1-3 (the unrolled solves) and 4 (the generic one).
+#include <sealfe/film/line_jacobi.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using namespace sealfe;
+using namespace dealii;
+
+namespace
+{
+using Entries = std::map<std::pair<unsigned int, unsigned int>, double>;
+
+/// Lines of these lengths (2 and 3: shorter than the band), numbered one after the other.
+const std::vector<unsigned int> lengths = {2, 9, 7, 12, 3, 8};
+
+RadialLines lines_in_order()
+{
+  RadialLines lines;
+  lines.start = {0};
+  for (const unsigned int m : lengths)
+    lines.start.push_back(lines.start.back() + m);
+  lines.order.resize(lines.start.back()); // numbered by lines: the position is the index
+  return lines;
+}
+
+/// A symmetric, strictly diagonally dominant matrix (so positive definite) numbered by lines:
+/// within a line, entries at distances 1..w; each dof coupled to the dofs at the same and the
+/// next position of the next line (cyclically); values not sums of round numbers.
+Entries make_entries(const RadialLines &lines, const unsigned int w)
+{
+  Entries a;
+  const unsigned int n_lines = lines.start.size() - 1;
+  auto couple = [&](const unsigned int i, const unsigned int j, const double v)
+  {
+    a[{i, j}] = v;
+    a[{j, i}] = v;
+  };
+  for (unsigned int k = 0; k < n_lines; ++k)
+  {
+    const unsigned int first = lines.start[k], last = lines.start[k + 1];
+    for (unsigned int p = first; p < last; ++p)
+    {
+      for (unsigned int d = 1; d <= w && p + d < last; ++d)
+        couple(p, p + d, -(1 + 0.3 * std::sin(0.7 * p + 1.3 * (p + d))));
+      const unsigned int next = (k + 1) % n_lines, i = p - first;
+      for (unsigned int s = 0; s < 2; ++s)
+        if (i + s < lines.start[next + 1] - lines.start[next])
+          couple(p, lines.start[next] + i + s, -(0.4 + 0.1 * std::cos(1.0 * p + s)));
+    }
+  }
+  std::vector<double> row_sum(lines.size(), 0.0);
+  for (const auto &[ij, v] : a)
+    row_sum[ij.first] += std::abs(v);
+  for (unsigned int i = 0; i < lines.size(); ++i)
+    a[{i, i}] = row_sum[i] + 1 + 0.2 * std::sin(1.0 * i);
+  return a;
+}
+
+/// The Trilinos matrix of `a` with dof i numbered number[i], on MPI_COMM_SELF.
+void make_matrix(TrilinosWrappers::SparseMatrix &A, const Entries &a,
+                 const std::vector<unsigned int> &number)
+{
+  const unsigned int n = number.size();
+  DynamicSparsityPattern dsp(n, n);
+  for (const auto &[ij, v] : a)
+    dsp.add(number[ij.first], number[ij.second]);
+  const IndexSet all = complete_index_set(n);
+  A.reinit(all, all, dsp, MPI_COMM_SELF);
+  for (const auto &[ij, v] : a)
+    A.set(number[ij.first], number[ij.second], v);
+  A.compress(VectorOperation::insert);
+}
+
+bool same_line(const RadialLines &lines, const unsigned int i, const unsigned int j)
+{
+  const auto line = [&](const unsigned int p)
+  { return std::upper_bound(lines.start.begin(), lines.start.end(), p) - lines.start.begin(); };
+  return line(i) == line(j);
+}
+} // namespace
+
+TEST(LineJacobi, SolvesEachLineBlockExactly)
+{
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  const RadialLines lines = lines_in_order();
+  const unsigned int n = lines.size();
+  std::vector<unsigned int> identity(n);
+  std::iota(identity.begin(), identity.end(), 0u);
+  for (const unsigned int w : {1u, 2u, 3u, 4u})
+  {
+    const Entries a = make_entries(lines, w);
+    TrilinosWrappers::SparseMatrix A;
+    make_matrix(A, a, identity);
+    LineJacobi jacobi;
+    jacobi.initialize(A, lines);
+    EXPECT_EQ(jacobi.bandwidth(), w);
+    // kappa(B) <= max (a_ii + r_i) / min (a_ii - r_i), r_i the sum of |B_ij| off the diagonal
+    std::vector<double> r(n, 0.0);
+    for (const auto &[ij, v] : a)
+      if (ij.first != ij.second && same_line(lines, ij.first, ij.second))
+        r[ij.first] += std::abs(v);
+    double top = 0, bottom = std::numeric_limits<double>::max();
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      top = std::max(top, a.at({i, i}) + r[i]);
+      bottom = std::min(bottom, a.at({i, i}) - r[i]);
+    }
+    const double kappa = top / bottom, tolerance = kappa * (4 * w + 8) * u;
+    // b = B x for a given x (B: the line blocks only; the entries between lines left out)
+    std::vector<double> x(n);
+    for (unsigned int i = 0; i < n; ++i)
+      x[i] = std::cos(0.37 * i + 0.1) + 0.5;
+    const IndexSet all = complete_index_set(n);
+    TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), y(b);
+    for (const auto &[ij, v] : a)
+      if (same_line(lines, ij.first, ij.second))
+        b.begin()[ij.first] += v * x[ij.second];
+    jacobi.vmult(y, b);
+    double error = 0, norm = 0;
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      error = std::max(error, std::abs(y.begin()[i] - x[i]));
+      norm = std::max(norm, std::abs(x[i]));
+    }
+    std::cout << "half bandwidth " << w << ": kappa(B) <= " << kappa << ", error " << error / norm
+              << " (bound " << tolerance << ")\n";
+    EXPECT_LE(error / norm, tolerance) << "half bandwidth " << w;
+  }
+}
+
+TEST(LineJacobi, GatherIntoLineOrderIsThePermutedSolve)
+{
+  const RadialLines by_lines = lines_in_order();
+  const unsigned int n = by_lines.size();
+  // another numbering of the same dofs: number[p] is the dof at line position p
+  std::vector<unsigned int> identity(n), number(n);
+  std::iota(identity.begin(), identity.end(), 0u);
+  number = identity;
+  std::shuffle(number.begin(), number.end(), std::mt19937(5));
+  RadialLines permuted;
+  permuted.start = by_lines.start;
+  permuted.order.resize(n);
+  for (unsigned int p = 0; p < n; ++p)
+    permuted.order[number[p]] = p; // the line position of each dof
+  permuted.index_by_position();
+  for (unsigned int p = 0; p < n; ++p)
+    ASSERT_EQ(permuted.index(p), number[p]);
+  const IndexSet all = complete_index_set(n);
+  for (const unsigned int w : {1u, 2u, 3u, 4u})
+  {
+    const Entries a = make_entries(by_lines, w);
+    TrilinosWrappers::SparseMatrix A, P;
+    make_matrix(A, a, identity);
+    make_matrix(P, a, number);
+    LineJacobi on_lines, on_permuted;
+    on_lines.initialize(A, by_lines);
+    on_permuted.initialize(P, permuted);
+    TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(b), bp(b), xp(b);
+    for (unsigned int p = 0; p < n; ++p)
+    {
+      b.begin()[p] = std::sin(0.61 * p + 0.2);
+      bp.begin()[number[p]] = b.begin()[p];
+    }
+    on_lines.vmult(x, b);
+    on_permuted.vmult(xp, bp);
+    unsigned int differences = 0;
+    for (unsigned int p = 0; p < n; ++p)
+      differences += xp.begin()[number[p]] != x.begin()[p];
+    EXPECT_EQ(differences, 0u) << "half bandwidth " << w;
+  }
+}
