@@ -2,6 +2,7 @@
 // FEValues evaluation per radial row (every cell of a row is a rotation of the row's first cell).
 #pragma once
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/std_cxx20/iota_view.h>
@@ -49,6 +50,7 @@ public:
   double angle(const unsigned int q) const
   {
     const double theta = row->angles[q] + cell_angle;
+    constexpr double pi = dealii::numbers::PI;
     return theta > pi ? theta - 2 * pi : (theta <= -pi ? theta + 2 * pi : theta);
   }
   double JxW(const unsigned int q) const { return row->JxW[q]; }
@@ -105,7 +107,6 @@ private:
   const Row *row = nullptr;
   double c = 1, s = 0;   // cos, sin of the angle from the row's first cell to this one
   double cell_angle = 0; // that angle (atan2(s, c))
-  static constexpr double pi = 3.141592653589793238462643;
   std::vector<dealii::Point<2>> points;
   mutable std::vector<dealii::Tensor<1, 2>> grads;
   mutable bool grads_turned = false;
