@@ -79,6 +79,31 @@ public:
     return expression ? d + expression_d_dtheta(r, theta) : d;
   }
   bool has_added_terms() const { return expression || features; }
+  /// Whether the film is the coned, tilted one alone (no waviness, expression or features): then
+  /// the coned_tilted_* forms below give value(), d_dtheta() and d_dt().
+  bool is_coned_tilted() const { return wave_amplitude == 0 && !has_added_terms(); }
+  /// h of the coned, tilted film at the point (x, y), |(x, y)| = r, given cos and sin of the
+  /// tilt angle: r cos(theta - psi) = x cos psi + y sin psi, so no sine or cosine per point (the
+  /// assembly evaluates the film at every quadrature point). Equal to value() to round-off.
+  double coned_tilted_value(const double x, const double y, const double r, const double cos_tilt,
+                            const double sin_tilt) const
+  {
+    return clearance + axial_offset + coning * (r - inner_radius) +
+           tilt * (x * cos_tilt + y * sin_tilt);
+  }
+  /// dh/dtheta of the same: -gamma r sin(theta - psi) = -gamma (y cos psi - x sin psi).
+  double coned_tilted_d_dtheta(const double x, const double y, const double cos_tilt,
+                               const double sin_tilt) const
+  {
+    return -tilt * (y * cos_tilt - x * sin_tilt);
+  }
+  /// dh/dt of the same: r sin(theta) = y, r cos(theta) = x in d_dt().
+  double coned_tilted_d_dt(const double x, const double y) const
+  {
+    return tilt_rate_x == 0 && tilt_rate_y == 0
+               ? axial_velocity
+               : axial_velocity + tilt_rate_x * y - tilt_rate_y * x;
+  }
   /// Expression + feature depths at (r, theta) (0 without them).
   double added_value(const double r, const double theta) const;
   double expression_d_dr(const double r, const double theta) const;
