@@ -10,6 +10,7 @@
 // comparison is of the fast path and not of FEValues with itself, the test also checks that
 // PolarCellValues takes every cell of this mesh from its row (none refused: polar_patches falls
 // back to FEValues only for refused cells).
+#include "../surface_feature_seals.h"
 #include <sealfe/film/film_output.h>
 #include <sealfe/film/reynolds_solver.h>
 
@@ -110,6 +111,63 @@ FilmSettings every_field_settings(const unsigned int degree)
   s.linear_solver = FilmSettings::LinearSolver::direct;
   return s;
 }
+/// Writes the fields of `s` by both routes (the radial rows, and DataOut::build_patches) into
+/// `root` and expects the same cells, points and arrays. Every array is Float32: the two routes
+/// compute the same doubles up to the round-off of the rotation (~1e-12 relative,
+/// tests/validation/polar_cell_values.cc), so their floats differ by at most one unit in the last
+/// place, 2^-23 |x| <= 2^-23 max |x|; twice that. Returns the number of point arrays.
+int expect_both_routes_equal(ReynoldsSolver &s, const fs::path &root, const std::string &tag)
+{
+  const fs::path polar = root / ("polar" + tag), generic = root / ("generic" + tag);
+  for (const fs::path &dir : {polar, generic})
+  {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  write_film_output(s, polar.string());
+  s.polar_rows = false; // the same solution through DataOut::build_patches
+  write_film_output(s, generic.string());
+  s.polar_rows = true;
+
+  const auto reader_a = read_piece(polar), reader_b = read_piece(generic);
+  vtkUnstructuredGrid *a = reader_a->GetOutput(), *b = reader_b->GetOutput();
+  const unsigned int degree = s.settings.polynomial_degree;
+  const std::size_t n_cells = s.mesh().radial_cells * s.mesh().circumferential_cells;
+  EXPECT_EQ(std::size_t(a->GetNumberOfCells()), n_cells) << tag;
+  EXPECT_EQ(a->GetNumberOfCells(), b->GetNumberOfCells()) << tag;
+  EXPECT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints()) << tag;
+  EXPECT_EQ(std::size_t(a->GetNumberOfPoints()), n_cells * (degree + 1) * (degree + 1)) << tag;
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints())
+    return 0;
+
+  const double float_tolerance = 2 * std::ldexp(1.0, -23);
+  const auto [point_diff, point_scale] =
+      difference(a->GetPoints()->GetData(), b->GetPoints()->GetData());
+  EXPECT_LE(point_diff, float_tolerance * point_scale) << tag;
+
+  vtkPointData *pa = a->GetPointData(), *pb = b->GetPointData();
+  EXPECT_EQ(pa->GetNumberOfArrays(), pb->GetNumberOfArrays()) << tag;
+  for (int k = 0; k < pa->GetNumberOfArrays(); ++k)
+  {
+    const std::string name = pa->GetArrayName(k);
+    vtkDataArray *x = pa->GetArray(name.c_str()), *y = pb->GetArray(name.c_str());
+    EXPECT_TRUE(x && y) << name;
+    if (!(x && y))
+      continue;
+    EXPECT_EQ(x->GetNumberOfComponents(), y->GetNumberOfComponents()) << name;
+    EXPECT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples()) << name;
+    const auto [diff, scale] = difference(x, y);
+    EXPECT_LE(diff, float_tolerance * scale) << name << ", " << tag;
+    std::cout << tag << ", " << name << ": max |difference| " << diff << " of max |value| " << scale
+              << "\n";
+  }
+  vtkDataArray *rank_a = a->GetCellData()->GetArray("rank"),
+               *rank_b = b->GetCellData()->GetArray("rank");
+  EXPECT_TRUE(rank_a && rank_b) << tag;
+  if (rank_a && rank_b)
+    EXPECT_EQ(difference(rank_a, rank_b).first, 0.0) << tag;
+  return pa->GetNumberOfArrays();
+}
 } // namespace
 
 TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
@@ -123,19 +181,6 @@ TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
     ReynoldsSolver s(settings, MPI_COMM_WORLD);
     const FilmLoads loads = s.run();
     ASSERT_GT(loads.cavitated_fraction, 0.02) << "degree " << degree; // the case has a cavity
-    const fs::path polar = root / ("polar" + std::to_string(degree)),
-                   generic = root / ("generic" + std::to_string(degree));
-    for (const fs::path &dir : {polar, generic})
-    {
-      fs::remove_all(dir);
-      fs::create_directories(dir);
-    }
-    write_film_output(s, polar.string());
-    s.polar_rows = false; // the same solution through DataOut::build_patches
-    write_film_output(s, generic.string());
-
-    const auto reader_a = read_piece(polar), reader_b = read_piece(generic);
-    vtkUnstructuredGrid *a = reader_a->GetOutput(), *b = reader_b->GetOutput();
     const std::size_t n_cells = s.mesh().radial_cells * s.mesh().circumferential_cells;
     // the fast path runs: every cell taken from its row, all but one per row turned (a row whose
     // key straddles a rounding step may have a second first cell: at most 2 per radial row)
@@ -144,48 +189,52 @@ TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
     EXPECT_EQ(std::size_t(rows.taken), n_cells) << "degree " << degree;
     EXPECT_LE(rows.rows, 2 * s.mesh().radial_cells) << "degree " << degree;
     EXPECT_GE(std::size_t(rows.turned), n_cells - rows.rows) << "degree " << degree;
-    ASSERT_EQ(std::size_t(a->GetNumberOfCells()), n_cells);
-    ASSERT_EQ(a->GetNumberOfCells(), b->GetNumberOfCells());
-    ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
-    ASSERT_EQ(std::size_t(a->GetNumberOfPoints()), n_cells * (degree + 1) * (degree + 1));
 
-    // Every array is Float32: the two routes compute the same doubles up to the round-off of
-    // the rotation (~1e-12 relative, tests/validation/polar_cell_values.cc), so their floats
-    // differ by at most one unit in the last place, 2^-23 |x| <= 2^-23 max |x|; twice that.
-    const double float_tolerance = 2 * std::ldexp(1.0, -23);
-    const auto [point_diff, point_scale] =
-        difference(a->GetPoints()->GetData(), b->GetPoints()->GetData());
-    EXPECT_LE(point_diff, float_tolerance * point_scale) << "degree " << degree;
-
-    vtkPointData *pa = a->GetPointData(), *pb = b->GetPointData();
-    ASSERT_EQ(pa->GetNumberOfArrays(), pb->GetNumberOfArrays());
     // every field the model has: pressure, h, flux, the four Patir & Cheng quantities, contact
     // pressure, liquid fraction, cavitated
-    EXPECT_EQ(pa->GetNumberOfArrays(), 10) << "degree " << degree;
-    for (int k = 0; k < pa->GetNumberOfArrays(); ++k)
-    {
-      const std::string name = pa->GetArrayName(k);
-      vtkDataArray *x = pa->GetArray(name.c_str()), *y = pb->GetArray(name.c_str());
-      ASSERT_TRUE(x && y) << name;
-      ASSERT_EQ(x->GetNumberOfComponents(), y->GetNumberOfComponents()) << name;
-      ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples()) << name;
-      const auto [diff, scale] = difference(x, y);
-      EXPECT_LE(diff, float_tolerance * scale) << name << ", degree " << degree;
-      std::cout << "degree " << degree << ", " << name << ": max |difference| " << diff
-                << " of max |value| " << scale << "\n";
-    }
+    const int n_arrays = expect_both_routes_equal(s, root, "degree " + std::to_string(degree));
+    EXPECT_EQ(n_arrays, 10) << "degree " << degree;
+
     // the void fraction is present and enters the flux: a cavity in the liquid fraction
-    vtkDataArray *liquid = pa->GetArray("liquid_fraction");
+    const fs::path polar = root / ("polardegree " + std::to_string(degree));
+    const auto reader = read_piece(polar);
+    vtkDataArray *liquid = reader->GetOutput()->GetPointData()->GetArray("liquid_fraction");
     ASSERT_TRUE(liquid);
     double min_liquid = 1;
     for (vtkIdType i = 0; i < liquid->GetNumberOfTuples(); ++i)
       min_liquid = std::min(min_liquid, liquid->GetTuple1(i));
     EXPECT_LT(min_liquid, 0.99) << "degree " << degree;
+  }
+  fs::remove_all(root);
+}
 
-    vtkDataArray *rank_a = a->GetCellData()->GetArray("rank"),
-                 *rank_b = b->GetCellData()->GetArray("rank");
-    ASSERT_TRUE(rank_a && rank_b);
-    EXPECT_EQ(difference(rank_a, rank_b).first, 0.0);
+// Rayleigh pads with the mesh aligned to their steps: the cells of a radial row have unequal
+// angular widths (groove, pocket, land), so PolarCellValues refuses the cells that are not a
+// rotation of their row's first cell and the output takes FEValues for them. The mix of both
+// must still write what build_patches writes.
+TEST(FilmOutputPatches, CellsThatAreNoRotationTakeFEValues)
+{
+  const fs::path root = fs::temp_directory_path() /
+                        ("sealfe_film_output_patches_refused_" + std::to_string(getpid()));
+  test::RayleighPadSeal pads;
+  pads.pads = 4;
+  pads.cells_per_pad = 10;
+  pads.radial_cells = 3;
+  for (const unsigned int degree : {1u, 2u})
+  {
+    pads.degree = degree;
+    const FilmSettings settings = pads.settings();
+    ReynoldsSolver s(settings, MPI_COMM_WORLD);
+    s.run();
+    const RowCount rows = count_rows(s.settings);
+    EXPECT_GT(rows.refused, 0u) << "degree " << degree; // the case this test is for
+    EXPECT_GT(rows.taken, 0u) << "degree " << degree;
+    EXPECT_EQ(std::size_t(rows.taken + rows.refused),
+              std::size_t(s.mesh().radial_cells * s.mesh().circumferential_cells));
+    std::cout << "degree " << degree << ": " << rows.taken << " cells from their rows, "
+              << rows.refused << " refused\n";
+    // pressure, h, flux (no roughness, contact or cavitation model)
+    EXPECT_EQ(expect_both_routes_equal(s, root, "pads degree " + std::to_string(degree)), 3);
   }
   fs::remove_all(root);
 }
