@@ -68,25 +68,32 @@ public:
       in.template get_cell<2>()->get_dof_values(*void_fraction, nodal_void);
     }
     std::array<double, max_components> values;
+    const Point<2> center = in.template get_cell<2>()->center();
     for (unsigned int q = 0; q < in.evaluation_points.size(); ++q)
     {
       const double liquid = needs_void_fraction() ? liquid_fraction(nodal_void, q) : 1.0;
       const unsigned int n =
-          point_values(in.evaluation_points[q], flux ? in.solution_gradients[q] : Tensor<1, 2>(),
-                       liquid, values.data());
+          point_values(in.evaluation_points[q], center,
+                       flux ? in.solution_gradients[q] : Tensor<1, 2>(), liquid, values.data());
       for (unsigned int k = 0; k < n; ++k)
         out[q](k) = values[k];
     }
   }
-  /// The fields at the output point x from the pressure gradient there and the liquid fraction
-  /// (1 - v: 1 outside a JFO cavity); writes get_names().size() values to `out` and returns
-  /// their number. Both routes to the patches (DataOut and the polar rows) compute them here.
-  unsigned int point_values(const Point<2> &x, const Tensor<1, 2> &grad_p, const double liquid,
-                            double *out) const
+  /// The fields at the output point x of the cell with centre `cell_center`, from the pressure
+  /// gradient there and the liquid fraction (1 - v: 1 outside a JFO cavity); writes
+  /// get_names().size() values to `out` and returns their number. Both routes to the patches
+  /// (DataOut and the polar rows) compute them here.
+  unsigned int point_values(const Point<2> &x, const Point<2> &cell_center,
+                            const Tensor<1, 2> &grad_p, const double liquid, double *out) const
   {
+    // The film is taken a hair inside the cell (1e-9 of the way to its centre): a vertex on a
+    // step of a surface feature (a mesh aligned to the steps) then shows this cell's side of the
+    // step, not whichever side the round-off of its coordinates falls on (the two routes compute
+    // the point to ~1e-16 relative, 1e-7 of the shift). For a smooth film the shift changes h by
+    // ~1e-9 of its variation across the cell, far below the Float32 of the file (6e-8).
+    const ReynoldsSolver::LocalFilm f = film(x + inward_shift * (cell_center - x));
     // in a JFO cavity the pressure part vanishes (p = p_cav) and the Couette part carries the
     // liquid fraction: the flux stream tracers follow is the flux that is conserved
-    const ReynoldsSolver::LocalFilm f = film(x);
     unsigned int k = 0;
     if (thickness)
       out[k++] = f.h;
@@ -120,6 +127,7 @@ public:
     return liquid;
   }
   static constexpr unsigned int max_components = 8;
+  static constexpr double inward_shift = 1e-9;
   std::vector<std::string> get_names() const override
   {
     std::vector<std::string> names;
@@ -204,6 +212,7 @@ void fill_patch(const Values &values, const DoFHandler<2>::active_cell_iterator 
     cell->get_dof_values(film.void_fraction_vector(), nodal_void);
   }
   std::array<double, FilmPostprocessor::max_components> film_values;
+  const Point<2> center = cell->center();
   unsigned int row = 0;
   for (const DataSet &set : sets)
   {
@@ -231,7 +240,8 @@ void fill_patch(const Values &values, const DoFHandler<2>::active_cell_iterator 
         for (unsigned int i = 0; i < n; ++i)
           grad_p += pressure[i] * values.shape_grad(i, q);
       const double liquid = nodal_void.size() ? film.liquid_fraction(nodal_void, q) : 1.0;
-      n_film = film.point_values(values.quadrature_point(q), grad_p, liquid, film_values.data());
+      n_film =
+          film.point_values(values.quadrature_point(q), center, grad_p, liquid, film_values.data());
       for (unsigned int k = 0; k < n_film; ++k)
         patch.data(row + k, q) = film_values[k];
     }

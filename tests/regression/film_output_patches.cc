@@ -211,7 +211,10 @@ TEST(FilmOutputPatches, PolarRowsWriteWhatBuildPatchesWrites)
 // Rayleigh pads with the mesh aligned to their steps: the cells of a radial row have unequal
 // angular widths (groove, pocket, land), so PolarCellValues refuses the cells that are not a
 // rotation of their row's first cell and the output takes FEValues for them. The mix of both
-// must still write what build_patches writes.
+// must still write what build_patches writes. The face is flat and the film piecewise constant
+// (land, pocket, groove), so every cell, aligned to the steps, must show one film thickness at
+// all its points: its own side of a step at the vertices on it (film_output.cc takes the film a
+// hair inside the cell), never the neighbour's, whichever way the round-off of the vertex falls.
 TEST(FilmOutputPatches, CellsThatAreNoRotationTakeFEValues)
 {
   const fs::path root = fs::temp_directory_path() /
@@ -234,7 +237,27 @@ TEST(FilmOutputPatches, CellsThatAreNoRotationTakeFEValues)
     std::cout << "degree " << degree << ": " << rows.taken << " cells from their rows, "
               << rows.refused << " refused\n";
     // pressure, h, flux (no roughness, contact or cavitation model)
-    EXPECT_EQ(expect_both_routes_equal(s, root, "pads degree " + std::to_string(degree)), 3);
+    const std::string tag = "pads degree " + std::to_string(degree);
+    EXPECT_EQ(expect_both_routes_equal(s, root, tag), 3);
+
+    // one film thickness per cell (patches: the (k + 1)^2 points of each cell in turn)
+    const auto reader = read_piece(root / ("polar" + tag));
+    vtkDataArray *h = reader->GetOutput()->GetPointData()->GetArray("film_thickness");
+    ASSERT_TRUE(h);
+    const vtkIdType per_cell = (degree + 1) * (degree + 1);
+    double largest_spread = 0, h_max = 0;
+    for (vtkIdType c = 0; c * per_cell < h->GetNumberOfTuples(); ++c)
+    {
+      double lo = h->GetTuple1(c * per_cell), hi = lo;
+      for (vtkIdType i = 1; i < per_cell; ++i)
+      {
+        lo = std::min(lo, h->GetTuple1(c * per_cell + i));
+        hi = std::max(hi, h->GetTuple1(c * per_cell + i));
+      }
+      largest_spread = std::max(largest_spread, hi - lo);
+      h_max = std::max(h_max, hi);
+    }
+    EXPECT_EQ(largest_spread, 0.0) << tag << " (largest film " << h_max << " m)";
   }
   fs::remove_all(root);
 }
