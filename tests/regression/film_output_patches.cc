@@ -33,7 +33,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -260,36 +259,6 @@ TEST(FilmOutputPatches, EveryCellShowsItsOwnSideOfAStep)
     }
     EXPECT_EQ(largest_spread, 0.0) << tag;
     EXPECT_EQ(films.size(), 3u) << tag;
-  }
-  fs::remove_all(root);
-}
-
-// Dimples on the mesh gmsh generates with lines on their circles: no cell is a rotation of
-// another, so PolarCellValues refuses every one and the output takes FEValues for each (the
-// fallback of polar_patches). It must still write what build_patches writes.
-TEST(FilmOutputPatches, CellsThatAreNoRotationTakeFEValues)
-{
-  if (std::system("command -v gmsh > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "needs the gmsh program";
-  const fs::path root = fs::temp_directory_path() /
-                        ("sealfe_film_output_patches_refused_" + std::to_string(getpid()));
-  fs::create_directories(root);
-  test::DimpledSeal dimples;
-  dimples.radius = 2e-3;
-  dimples.mesh_size = 1e-3;
-  dimples.cavitation = "none";
-  dimples.mesh_file = (root / "dimples.msh").string();
-  for (const unsigned int degree : {1u, 2u})
-  {
-    dimples.degree = degree;
-    ReynoldsSolver s(dimples.settings(), MPI_COMM_WORLD);
-    s.run();
-    const RowCount rows = count_rows(s.settings);
-    EXPECT_GT(rows.refused, 100u) << "degree " << degree; // the case this test is for
-    EXPECT_EQ(rows.taken, 0u) << "degree " << degree;
-    // pressure, h, flux
-    const std::string tag = "dimples degree " + std::to_string(degree);
-    EXPECT_EQ(expect_both_routes_equal(s, root, tag, rows.refused), 3);
   }
   fs::remove_all(root);
 }

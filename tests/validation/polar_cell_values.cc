@@ -158,3 +158,83 @@ TEST(PolarCellValues, SolveEqualsTheFEValuesAssembly)
               << (a.leakage_outer - b.leakage_outer) / Q << " relative\n";
   }
 }
+
+// A cell that is not its row's first cell turned (one vertex moved) must be refused, or, if the
+// move changed its row key, be the first cell of a row of its own (FEValues on itself); no cell
+// may get the turned values of a row it does not belong to. A vertex moved by 1e-12 m along
+// the circle (far above the 64 u r = 3e-13 ro of the check, below the 2^-36 m of the row key)
+// leaves the keys of the cells around it unchanged: those that are not a row's first cell are
+// refused. Moved by 1e-6 m, the keys change: new rows, nothing refused. Either way, every cell
+// that reinit takes has FEValues' points and gradients (the tolerance of the test above).
+TEST(PolarCellValues, RefusesACellThatIsNoRotation)
+{
+  const double ri = 0.0355, ro = 0.0408;
+  const unsigned int degree = 2;
+  for (const double move : {1e-12, 1e-6})
+  {
+    AnnulusMesh m;
+    m.radial_cells = 4;
+    m.circumferential_cells = 32;
+    parallel::distributed::Triangulation<2> tria(MPI_COMM_WORLD);
+    m.create(tria, ri, ro, 0);
+    // vertex 3 of a cell halfway round (not a row's first cell), moved along its circle
+    auto moved_cell = tria.begin_active();
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->center()[0] < -0.9 * cell->center().norm() && cell->vertex(0).norm() > ri * 1.01)
+      {
+        moved_cell = cell;
+        break;
+      }
+    Point<2> &x3 = moved_cell->vertex(3);
+    const Point<2> tangent(-x3[1] / x3.norm(), x3[0] / x3.norm());
+    const Point<2> moved_vertex = x3 + move * tangent;
+    x3 = moved_vertex;
+
+    const FE_Q<2> fe(degree);
+    const MappingQ<2> mapping(degree);
+    const QGauss<2> quadrature(degree + 2);
+    FEValues<2> fe_values(mapping, fe, quadrature, update_gradients | update_quadrature_points);
+    PolarCellValues polar(mapping, fe, quadrature);
+    const unsigned int n = fe.n_dofs_per_cell();
+    const double h_r = (ro - ri) / m.radial_cells, tol = 1000 * 1.1e-16 * ro / h_r;
+    unsigned int refused = 0, refused_elsewhere = 0, taken = 0;
+    double worst_x = 0, worst_grad = 0;
+    for (const auto &cell : tria.active_cell_iterators())
+    {
+      bool touches = false;
+      for (unsigned int k = 0; k < 4; ++k)
+        touches = touches || cell->vertex(k).distance(moved_vertex) == 0;
+      if (!polar.reinit(cell))
+      {
+        ++refused;
+        refused_elsewhere += touches ? 0 : 1;
+        continue;
+      }
+      ++taken;
+      fe_values.reinit(cell);
+      double grad_scale = 0;
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+        for (unsigned int i = 0; i < n; ++i)
+          grad_scale = std::max(grad_scale, fe_values.shape_grad(i, q).norm());
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+      {
+        worst_x = std::max(worst_x,
+                           fe_values.quadrature_point(q).distance(polar.quadrature_point(q)) / ro);
+        for (unsigned int i = 0; i < n; ++i)
+          worst_grad =
+              std::max(worst_grad,
+                       (fe_values.shape_grad(i, q) - polar.shape_grad(i, q)).norm() / grad_scale);
+      }
+    }
+    std::cout << "vertex moved " << move << " m: " << taken << " taken, " << refused
+              << " refused; points " << worst_x << ", gradients " << worst_grad << "\n";
+    EXPECT_EQ(taken + refused, tria.n_active_cells());
+    EXPECT_EQ(refused_elsewhere, 0u) << move;
+    if (move < 1e-11)
+      EXPECT_GE(refused, 2u) << move; // 4 cells around the vertex, at most 2 of them first cells
+    else
+      EXPECT_EQ(refused, 0u) << move;
+    EXPECT_LT(worst_x, 1e-13) << move;
+    EXPECT_LT(worst_grad, tol) << move;
+  }
+}
