@@ -124,12 +124,13 @@ vtkSmartPointer<vtkUnstructuredGrid> read_grid(const fs::path &file)
   return grid;
 }
 
-} // namespace
-
-TEST(TransientRotorFields, RotorPadStandsAtItsAnglePlusTheRotorsTurnInTheWrittenFields)
+/// Runs the case through `launcher` (empty, or mpirun) in `dir` and checks the files it writes;
+/// `ranks`: the MPI ranks summary.json must name.
+void run_and_check(const std::string &directory, const std::string &launcher,
+                   const unsigned int ranks)
 {
-  const fs::path dir = fresh_directory("sealfe_transient_rotor_fields");
-  const CliResult r = run_sealfe(dir, "transient", case_prm());
+  const fs::path dir = fresh_directory(directory);
+  const CliResult r = run_sealfe(dir, "transient", case_prm(), launcher);
   ASSERT_EQ(r.status, 0) << r.err;
   const fs::path out = dir / "out";
 
@@ -254,4 +255,26 @@ TEST(TransientRotorFields, RotorPadStandsAtItsAnglePlusTheRotorsTurnInTheWritten
     EXPECT_NE(std::find(files.begin(), files.end(), f), files.end()) << f;
   // the stator stays where it started (1e15 kg)
   EXPECT_NEAR(s.at("final_state").at("axial_offset").get<double>(), 0.0, 1e-6 * C0);
+  EXPECT_EQ(s.at("mpi_ranks").get<unsigned int>(), ranks);
+}
+} // namespace
+
+TEST(TransientRotorFields, RotorPadStandsAtItsAnglePlusTheRotorsTurnInTheWrittenFields)
+{
+  run_and_check("sealfe_transient_rotor_fields", "", 1);
+}
+
+// The same on two ranks: the film solved with its mesh split, the fields written as one .pvtu of
+// two pieces per output time (read whole through VTK), the same claims to the same tolerances.
+TEST(TransientRotorFields, TheSameOnTwoRanks)
+{
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "needs mpirun";
+  // this test is itself an MPI process (singleton): its OMPI_/PMIX_ variables must not reach the
+  // mpirun it starts
+  run_and_check("sealfe_transient_rotor_fields_np2",
+                "for v in $(env | cut -d= -f1 | grep -E '^(OMPI_|PMIX_|OPAL_)'); do unset $v; "
+                "done; OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                "OMPI_MCA_rmaps_base_oversubscribe=1 timeout 300 mpirun -np 2 ",
+                2);
 }
