@@ -161,16 +161,19 @@ TEST(PolarCellValues, SolveEqualsTheFEValuesAssembly)
 
 // A cell that is not its row's first cell turned (one vertex moved) must be refused, or, if the
 // move changed its row key, be the first cell of a row of its own (FEValues on itself); no cell
-// may get the turned values of a row it does not belong to. A vertex moved by 1e-12 m along
-// the circle (far above the 64 u r = 3e-13 ro of the check, below the 2^-36 m of the row key)
-// leaves the keys of the cells around it unchanged: those that are not a row's first cell are
-// refused. Moved by 1e-6 m, the keys change: new rows, nothing refused. Either way, every cell
-// that reinit takes has FEValues' points and gradients (the tolerance of the test above).
+// may get the turned values of a row it does not belong to. The key holds the radii of vertices
+// 0 and 1 and the angle between vertices 0 and 2 (units 2^-36). A vertex moved by 1e-14 m along
+// its circle (above the 64 u r = 6e-16 m of the vertex check, far below the 2^-36 (1.5e-11) of
+// the key's angle, 2.5e-13 here) leaves the keys of the four cells around it unchanged: all four
+// are refused (none is a row's first cell). Moved by 1e-6 m, the cells whose vertex 0 or 2 it
+// is get new keys (new rows of their own); those whose vertex 1 or 3 it is keep theirs and are
+// refused. Either way nothing else is refused, and every cell reinit takes has FEValues' points
+// and gradients (the tolerance of the test above).
 TEST(PolarCellValues, RefusesACellThatIsNoRotation)
 {
   const double ri = 0.0355, ro = 0.0408;
   const unsigned int degree = 2;
-  for (const double move : {1e-12, 1e-6})
+  for (const double move : {1e-14, 1e-6})
   {
     AnnulusMesh m;
     m.radial_cells = 4;
@@ -186,8 +189,9 @@ TEST(PolarCellValues, RefusesACellThatIsNoRotation)
         break;
       }
     Point<2> &x3 = moved_cell->vertex(3);
-    const Point<2> tangent(-x3[1] / x3.norm(), x3[0] / x3.norm());
-    const Point<2> moved_vertex = x3 + move * tangent;
+    const double alpha = move / x3.norm(); // turned on its circle: the radius keeps its key
+    const Point<2> moved_vertex(std::cos(alpha) * x3[0] - std::sin(alpha) * x3[1],
+                                std::sin(alpha) * x3[0] + std::cos(alpha) * x3[1]);
     x3 = moved_vertex;
 
     const FE_Q<2> fe(degree);
@@ -230,10 +234,7 @@ TEST(PolarCellValues, RefusesACellThatIsNoRotation)
               << " refused; points " << worst_x << ", gradients " << worst_grad << "\n";
     EXPECT_EQ(taken + refused, tria.n_active_cells());
     EXPECT_EQ(refused_elsewhere, 0u) << move;
-    if (move < 1e-11)
-      EXPECT_GE(refused, 2u) << move; // 4 cells around the vertex, at most 2 of them first cells
-    else
-      EXPECT_EQ(refused, 0u) << move;
+    EXPECT_EQ(refused, move < 1e-11 ? 4u : 2u) << move;
     EXPECT_LT(worst_x, 1e-13) << move;
     EXPECT_LT(worst_grad, tol) << move;
   }
