@@ -167,8 +167,8 @@ void run_and_check(const std::string &directory, const std::string &launcher,
   // with its points turned by phi(t); the patches are subdivided by the degree (2), so the
   // written points are the Q2 nodes, every half cell (0.033 rad) in theta. So the pressure's
   // extremes (nodal: the Rayleigh peak at the step, the trough where the pocket begins) and the
-  // pocket's edges (a node on a step carries its cell's side of the film) stand at the exact angles but
-  // for the rounding of the VTU's Float32 points: each coordinate to a relative u = 2^-24
+  // pocket's edges (a node on a step carries its cell's side of the film) stand at the exact angles
+  // but for the rounding of the VTU's Float32 points: each coordinate to a relative u = 2^-24
   // (6.0e-8), which moves atan2(y, x) by at most |x y| 2u / r^2 <= u rad. Tolerance 2u; a node
   // one spacing off would miss it by 0.033 rad, and unturned the pad would be off by
   // phi(t) = 0.31, 1.25, 2.75 rad.
