@@ -1265,9 +1265,49 @@ void JFOSolver::solve()
   }
   s.last_iterations += it;
   // the Jacobian at the solution, for the linearised loads (a start-only level has none)
-  if (!jacobian_at_iterate && !s.start_only && !jacobian_by_columns(a, v))
-    assemble(a, v, true);
+  if (!s.start_only)
+  {
+    const bool by_columns = !jacobian_at_iterate && jacobian_by_columns(a, v);
+    if (!jacobian_at_iterate && !by_columns)
+      assemble(a, v, true);
+    ++(by_columns ? jacobians_by_columns : jacobians_by_cells);
+  }
   store_solution();
+}
+
+JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
+{
+  GlobalMatricesAndAssembly m;
+  compute_cell_matrices();
+  if (!prepare_global_matrices())
+    return m;
+  m.PA = global_PA;
+  m.G = global_G;
+  const unsigned int n = s.fe->n_dofs_per_cell();
+  FullMatrix<double> J(n, n);
+  std::vector<types::global_dof_index> dofs(n);
+  for (std::vector<double> *values : {&m.assembled_PA, &m.assembled_G})
+  {
+    const bool pressure = values == &m.assembled_PA;
+    TrilinosWrappers::SparseMatrix M;
+    M.copy_from(s.system_matrix); // its pattern, maps and storage order
+    M = 0;
+    for (const auto &cell : s.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const auto k = cell->active_cell_index();
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            J(i, j) = pressure ? s.pressure_scale * cell_A[k](i, j) : cell_G[k](i, j);
+        cell->get_dof_indices(dofs);
+        s.homogeneous_constraints.distribute_local_to_global(J, dofs, M);
+      }
+    M.compress(VectorOperation::add);
+    for_each_row(M.trilinos_matrix(),
+                 [&](int, const int entries, const double *row_values, const int *, std::size_t)
+                 { values->insert(values->end(), row_values, row_values + entries); });
+  }
+  return m;
 }
 
 void JFOSolver::store_solution()
