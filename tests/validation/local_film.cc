@@ -84,30 +84,6 @@ TEST(LocalFilm, ConedTiltedFilmEqualsFilmThicknessFormulas)
   }
 }
 
-// The 5-argument local_film trusts the caller's cos psi and sin psi; a debug build checks them
-// against the tilt angle (deal.II Assert, 4 eps; a release build compiles the check out, so the
-// test exists only in a debug build, where Assert is made to throw instead of abort).
-#ifdef DEBUG
-TEST(LocalFilm, DebugBuildRefusesCosSinOfAnotherAngle)
-{
-  dealii::deal_II_exceptions::disable_abort_on_exception();
-  FilmSettings s;
-  s.geometry.tilt = 0.5 * s.geometry.clearance / s.geometry.outer_radius;
-  s.geometry.tilt_angle = 1.9;
-  ReynoldsSolver solver(s, MPI_COMM_WORLD);
-  const double r = 0.038, theta = 0.4, psi = s.geometry.tilt_angle;
-  const dealii::Point<2> x(r * std::cos(theta), r * std::sin(theta));
-  EXPECT_NO_THROW(solver.local_film(x, r, theta, std::cos(psi), std::sin(psi)));
-  // one part in 1e9 of the angle: far above round-off, far below anything visible in h
-  EXPECT_THROW(solver.local_film(x, r, theta, std::cos(psi + 1e-9), std::sin(psi + 1e-9)),
-               dealii::ExceptionBase);
-  // without a tilt the two multiply gamma = 0: local_film(x) passes 1 and 0
-  s.geometry.tilt = 0;
-  ReynoldsSolver untilted(s, MPI_COMM_WORLD);
-  EXPECT_NO_THROW(untilted.local_film(x, r, theta, 1, 0));
-}
-#endif
-
 namespace
 {
 FilmSettings parsed(const std::string &text)
@@ -156,9 +132,8 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
   const std::vector<Case> cases = {
       {"coned, tilted", tilted},
       {"wavy", tilted + wavy},
-      {"film expression",
-       tilted + " set Film expression = a*cos(2*theta)*r/0.0408\n"
-                " set Film expression constants = a=0.2e-6\n"},
+      {"film expression", tilted + " set Film expression = a*cos(2*theta)*r/0.0408\n"
+                                   " set Film expression constants = a=0.2e-6\n"},
       {"surface features (rotor)",
        tilted + wavy +
            " subsection Surface features\n  set Face = rotor\n  subsection Rayleigh pads\n"
@@ -220,16 +195,16 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
         const double r_x = x.norm(), theta_x = std::atan2(x[1], x[0]);
         const double slope = g.d_dtheta(r_x, theta_x);
         worst_h = std::max(worst_h, std::abs(f.h - g.value(r_x, theta_x)) / h_bound);
-        worst_squeeze = std::max(
-            worst_squeeze, std::abs(f.squeeze - (g.d_dt(r_x, theta_x) + w_F * slope)) /
-                               squeeze_bound);
+        worst_squeeze =
+            std::max(worst_squeeze,
+                     std::abs(f.squeeze - (g.d_dt(r_x, theta_x) + w_F * slope)) / squeeze_bound);
         worst_div = std::max(worst_div, std::abs(f.c_div - w_mean * slope) / div_bound);
         ++points;
       }
     }
-    std::cout << c.name << ": " << cells << " of " << tria.n_active_cells() << " cells, "
-              << points << " points; worst error / bound: h " << worst_h << ", squeeze "
-              << worst_squeeze << ", div c " << worst_div << "\n";
+    std::cout << c.name << ": " << cells << " of " << tria.n_active_cells() << " cells, " << points
+              << " points; worst error / bound: h " << worst_h << ", squeeze " << worst_squeeze
+              << ", div c " << worst_div << "\n";
     // every cell of a row is a turned copy of its first (also the aligned mesh's rows)
     EXPECT_EQ(cells, tria.n_active_cells()) << c.name;
     EXPECT_LE(worst_h, 1.0) << c.name;
