@@ -1310,6 +1310,44 @@ JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
   return m;
 }
 
+std::vector<double> JFOSolver::jacobian_at_solution(const bool by_columns)
+{
+  compute_cell_matrices();
+  // The solution's unknowns: v as stored, a = (p - p_cav)/P from p = p_cav + P a, exact where
+  // a = 0 and within round-off elsewhere, which the Jacobian does not see where v = 0 (there
+  // d_a = 1 - a/|a| = 0 for every a > 0). Checked: the complementarity derivatives must give
+  // the stored choice and elimination of every node bitwise.
+  for (const auto i : s.locally_owned_dofs)
+  {
+    a_owned[i] = (s.locally_relevant_solution[i] - s.cavitation.pressure) / s.pressure_scale;
+    v_owned[i] = s.locally_relevant_void[i];
+  }
+  a_owned.compress(VectorOperation::insert);
+  v_owned.compress(VectorOperation::insert);
+  a = a_owned;
+  v = v_owned;
+  const VectorType keep = s.jfo_keep_pressure, elimination = s.jfo_elimination;
+  if (by_columns)
+  {
+    if (!prepare_global_matrices())
+      return {};
+    assemble(a, v, false); // the residual by products: its index maps serve jacobian_by_columns
+    if (!jacobian_by_columns(a, v))
+      return {};
+  }
+  else
+    assemble(a, v, true);
+  store_solution();
+  for (const auto i : s.locally_owned_dofs)
+    if (s.jfo_keep_pressure[i] != keep[i] || s.jfo_elimination[i] != elimination[i])
+      return {};
+  std::vector<double> values;
+  for_each_row(s.system_matrix.trilinos_matrix(),
+               [&](int, const int entries, const double *row_values, const int *, std::size_t)
+               { values.insert(values.end(), row_values, row_values + entries); });
+  return values;
+}
+
 void JFOSolver::store_solution()
 {
   // The last assembly built the Jacobian at the solution: linearized_loads solves with it (it is

@@ -21,6 +21,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -103,12 +104,14 @@ FilmSettings parsed(const std::string &text)
 // Cartesian forms, every other film (waviness, film expression, surface features) the polar
 // FilmThickness formulas at that (r, theta). Cell by cell over a mesh, the film, its squeeze
 // and the divergence of the Couette flux must equal the one-point formulas at the point's own
-// r = |x|, theta = atan2(x) to round-off. Bound: r and theta of PolarCellValues differ from
-// those by at most ~8 u r and ~8 u pi (atan2 and the norm ~1 ulp each, the rotation of the row's
-// point and its cos, sin from the vertices a few u, the sum of the two angles and the wrap by
-// 2 pi one rounding each), which moves a term by its derivative times that; each evaluation
-// rounds ~5 times (16 u of the sizes, as above). With H the sum of the film's term sizes, H_t
-// and H_tt bounds of |dh/dtheta| and |d2h/dtheta2|, R the squeeze's size and R_t its theta slope:
+// r = |x|, theta = atan2(x) to round-off, and so must the one-point local_film(x) of the loads
+// and the field output (its own |x|, atan2, cos and sin: the same bound holds). Bound: r and theta
+// of PolarCellValues differ from those by at most ~8 u r and ~8 u pi (atan2 and the norm ~1 ulp
+// each, the rotation of the row's point and its cos, sin from the vertices a few u, the sum of the
+// two angles and the wrap by 2 pi one rounding each), which moves a term by its derivative times
+// that; each evaluation rounds ~5 times (16 u of the sizes, as above). With H the sum of the film's
+// term sizes, H_t and H_tt bounds of |dh/dtheta| and |d2h/dtheta2|, R the squeeze's size and R_t
+// its theta slope:
 //   |dh| <= 32 u (H + pi H_t), |d(dh/dtheta)| <= 32 u (H_t + pi H_tt) + D,
 //   |d squeeze| <= 32 u (R + pi R_t) + |w_F| |d(dh/dtheta)|,  |d div c| <= |w_mean| |d(dh/dtheta)|,
 // 32 u a factor 2-4 over the sum. D: a film expression's dh/dtheta is a centred difference with
@@ -120,9 +123,10 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
 {
   using namespace dealii;
   const double u = 0.5 * std::numeric_limits<double>::epsilon();
-  const std::string tilted = " set Tilt = 1.2e-5\n set Tilt angle = 1.9\n set Axial offset = 1e-7\n"
-                             " set Axial velocity = 1e-4\n set Tilt rate x = 2e-3\n"
-                             " set Tilt rate y = -3e-3\n";
+  const std::string tilted =
+      " set Tilt = 1.2e-5\n set Tilt angle = 1.9\n set Axial offset = 1e-7\n";
+  const std::string squeeze = "subsection Squeeze motion\n set Axial velocity = 1e-4\n"
+                              " set Tilt rate x = 2e-3\n set Tilt rate y = -3e-3\nend\n";
   const std::string wavy = " set Wave amplitude = 0.2e-6\n set Wave number = 3\n";
   const double expression_size = 0.2e-6;
   struct Case
@@ -143,8 +147,8 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
   for (const Case &c : cases)
   {
     const FilmSettings s =
-        parsed("subsection Geometry\n" + c.geometry +
-               "end\nsubsection Discretization\n set Radial cells = 4\n"
+        parsed("subsection Geometry\n" + c.geometry + "end\n" + squeeze +
+               "subsection Discretization\n set Radial cells = 4\n"
                " set Circumferential cells = 96\n set Polynomial degree = 2\nend\n");
     const FilmThickness &g = s.geometry;
     ASSERT_EQ(g.is_coned_tilted(), c.name == "coned, tilted");
@@ -180,7 +184,7 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
     mapping.initialize(MappingQ<2>(degree), tria);
     PolarCellValues polar(mapping, fe, QGauss<2>(degree + 2));
     const double cos_tilt = std::cos(g.tilt_angle), sin_tilt = std::sin(g.tilt_angle);
-    double worst_h = 0, worst_squeeze = 0, worst_div = 0;
+    double worst_h = 0, worst_squeeze = 0, worst_div = 0, worst_one_point = 0;
     unsigned int cells = 0, points = 0;
     for (const auto &cell : tria.active_cell_iterators())
     {
@@ -199,16 +203,22 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
             std::max(worst_squeeze,
                      std::abs(f.squeeze - (g.d_dt(r_x, theta_x) + w_F * slope)) / squeeze_bound);
         worst_div = std::max(worst_div, std::abs(f.c_div - w_mean * slope) / div_bound);
+        // the one-point local_film(x) (loads, output): |x|, atan2 and cos, sin of its own
+        const ReynoldsSolver::LocalFilm f1 = solver.local_film(x);
+        worst_one_point = std::max({worst_one_point, std::abs(f.h - f1.h) / h_bound,
+                                    std::abs(f.squeeze - f1.squeeze) / squeeze_bound,
+                                    std::abs(f.c_div - f1.c_div) / div_bound});
         ++points;
       }
     }
     std::cout << c.name << ": " << cells << " of " << tria.n_active_cells() << " cells, " << points
               << " points; worst error / bound: h " << worst_h << ", squeeze " << worst_squeeze
-              << ", div c " << worst_div << "\n";
+              << ", div c " << worst_div << "; against local_film(x) " << worst_one_point << "\n";
     // every cell of a row is a turned copy of its first (also the aligned mesh's rows)
     EXPECT_EQ(cells, tria.n_active_cells()) << c.name;
     EXPECT_LE(worst_h, 1.0) << c.name;
     EXPECT_LE(worst_squeeze, 1.0) << c.name;
     EXPECT_LE(worst_div, 1.0) << c.name;
+    EXPECT_LE(worst_one_point, 1.0) << c.name;
   }
 }

@@ -54,6 +54,12 @@ public:
     std::vector<double> PA, G, assembled_PA, assembled_G;
   };
   GlobalMatricesAndAssembly global_matrices_and_assembly();
+  /// Test hook (tests/validation/cavitation_fe.cc): on a solver after a JFO run, the FB-Newton
+  /// Jacobian at its solution built again, by columns of the global P A and G
+  /// (jacobian_by_columns) or by the cell loop (assemble()), and left for the linearised loads
+  /// as solve() leaves it; returns its values in storage order (empty where by columns does not
+  /// apply, or where the solution's a, v from its pressure do not give the stored elimination).
+  std::vector<double> jacobian_at_solution(bool by_columns);
 
 private:
   /// Cell matrices A, G, F (state independent): once per solve, reused by every iteration.
