@@ -1265,9 +1265,87 @@ void JFOSolver::solve()
   }
   s.last_iterations += it;
   // the Jacobian at the solution, for the linearised loads (a start-only level has none)
-  if (!jacobian_at_iterate && !s.start_only && !jacobian_by_columns(a, v))
+  if (!s.start_only)
+  {
+    const bool by_columns = !jacobian_at_iterate && jacobian_by_columns(a, v);
+    if (!jacobian_at_iterate && !by_columns)
+      assemble(a, v, true);
+    ++(by_columns ? jacobians_by_columns : jacobians_by_cells);
+  }
+  store_solution();
+}
+
+JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
+{
+  GlobalMatricesAndAssembly m;
+  compute_cell_matrices();
+  if (!prepare_global_matrices())
+    return m;
+  m.PA = global_PA;
+  m.G = global_G;
+  const unsigned int n = s.fe->n_dofs_per_cell();
+  FullMatrix<double> J(n, n);
+  std::vector<types::global_dof_index> dofs(n);
+  for (std::vector<double> *values : {&m.assembled_PA, &m.assembled_G})
+  {
+    const bool pressure = values == &m.assembled_PA;
+    TrilinosWrappers::SparseMatrix M;
+    M.copy_from(s.system_matrix); // its pattern, maps and storage order
+    M = 0;
+    for (const auto &cell : s.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const auto k = cell->active_cell_index();
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            J(i, j) = pressure ? s.pressure_scale * cell_A[k](i, j) : cell_G[k](i, j);
+        cell->get_dof_indices(dofs);
+        s.homogeneous_constraints.distribute_local_to_global(J, dofs, M);
+      }
+    M.compress(VectorOperation::add);
+    for_each_row(M.trilinos_matrix(),
+                 [&](int, const int entries, const double *row_values, const int *, std::size_t)
+                 { values->insert(values->end(), row_values, row_values + entries); });
+  }
+  return m;
+}
+
+std::vector<double> JFOSolver::jacobian_at_solution(const bool by_columns)
+{
+  compute_cell_matrices();
+  // The solution's unknowns: v as stored, a = (p - p_cav)/P from p = p_cav + P a, exact where
+  // a = 0 and within round-off elsewhere, which the Jacobian does not see where v = 0 (there
+  // d_a = 1 - a/|a| = 0 for every a > 0). Checked: the complementarity derivatives must give
+  // the stored choice and elimination of every node bitwise.
+  for (const auto i : s.locally_owned_dofs)
+  {
+    a_owned[i] = (s.locally_relevant_solution[i] - s.cavitation.pressure) / s.pressure_scale;
+    v_owned[i] = s.locally_relevant_void[i];
+  }
+  a_owned.compress(VectorOperation::insert);
+  v_owned.compress(VectorOperation::insert);
+  a = a_owned;
+  v = v_owned;
+  const VectorType keep = s.jfo_keep_pressure, elimination = s.jfo_elimination;
+  if (by_columns)
+  {
+    if (!prepare_global_matrices())
+      return {};
+    assemble(a, v, false); // the residual by products: its index maps serve jacobian_by_columns
+    if (!jacobian_by_columns(a, v))
+      return {};
+  }
+  else
     assemble(a, v, true);
   store_solution();
+  for (const auto i : s.locally_owned_dofs)
+    if (s.jfo_keep_pressure[i] != keep[i] || s.jfo_elimination[i] != elimination[i])
+      return {};
+  std::vector<double> values;
+  for_each_row(s.system_matrix.trilinos_matrix(),
+               [&](int, const int entries, const double *row_values, const int *, std::size_t)
+               { values.insert(values.end(), row_values, row_values + entries); });
+  return values;
 }
 
 void JFOSolver::store_solution()

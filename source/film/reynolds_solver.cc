@@ -361,6 +361,15 @@ ReynoldsSolver::LocalFilm ReynoldsSolver::local_film(const Point<2> &x, const do
                                                      const double theta, const double cos_tilt,
                                                      const double sin_tilt) const
 {
+  // The caller's cos psi and sin psi (once per assembly, or 1 and 0 where there is no tilt, which
+  // they multiply) must be those of the film's tilt angle: both sides take std::cos and std::sin
+  // of the same angle, so they agree to the bit; 4 eps (8 u) allows a rounding or two more.
+  Assert(
+      film.tilt == 0 || (std::abs(cos_tilt - std::cos(film.tilt_angle)) <=
+                             4 * std::numeric_limits<double>::epsilon() &&
+                         std::abs(sin_tilt - std::sin(film.tilt_angle)) <=
+                             4 * std::numeric_limits<double>::epsilon()),
+      ExcMessage("local_film: cos_tilt, sin_tilt are not the cosine and sine of the tilt angle"));
   LocalFilm f;
   f.r = r;
   f.theta = theta;

@@ -6,6 +6,9 @@
 //    loads of the cell-by-cell assembly to the Newton tolerance, and the mass balance holds on
 //    both; so does the low-rank
 //    update of the global active-set rounds against a factorisation per round;
+//  - the global P A and G equal deal.II's assembly of the cell matrices entry by entry, and the
+//    Jacobian at the solution by their columns equals the cell loop's, with the same linearised
+//    loads (round-off bounds);
 //  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
 //  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
 //    10 kPa, waviness n = 1..12 up to 0.9 C0, and no supply (pi = po = p_cav) is refused.
@@ -18,7 +21,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 using namespace sealfe;
 
@@ -100,7 +106,9 @@ TEST(CavitationFE, JfoResidualsByMatrixProductsGiveTheCellAssemblysSolution)
   // Newton tolerance (Cavitation/Tolerance = 1e-10); so the loads agree to that tolerance and the
   // mass balance holds (1e-8, as above) on both. The linearised loads solve one linear system
   // whose matrices are the same up to round-off (bitwise where a_j + v_j > 0): they agree to the
-  // same tolerance.
+  // same tolerance. The first run's Jacobian at the solution is the column combination
+  // (JFOSolver::jacobian_by_columns: this case converges at the residual-only check after a
+  // successful polish), the second's the cell loop's, so the linearised loads compare the two.
   const FilmThickness film = wavy_film();
   const OperatingConditions conditions = low_pressure();
   const double tolerance = 1e-10;
@@ -115,7 +123,12 @@ TEST(CavitationFE, JfoResidualsByMatrixProductsGiveTheCellAssemblysSolution)
     JFOSolver::assemble_by_cells = by_cells;
     ReynoldsSolver solver(MPI_COMM_WORLD);
     solver.cavitation.tolerance = tolerance;
+    const unsigned int by_columns_before = JFOSolver::jacobians_by_columns,
+                       by_cells_before = JFOSolver::jacobians_by_cells;
     l[by_cells] = solve(film, conditions, Cavitation::jfo, 16, 256, 2, &solver);
+    // one Jacobian at the solution per solve (the coarse start levels have none)
+    EXPECT_EQ(JFOSolver::jacobians_by_columns - by_columns_before, by_cells ? 0u : 1u);
+    EXPECT_EQ(JFOSolver::jacobians_by_cells - by_cells_before, by_cells ? 1u : 0u);
     EXPECT_LT(solver.nonlinear_residual(), tolerance);
     const double Q = std::abs(l[by_cells].leakage_outer);
     EXPECT_LT(std::abs(l[by_cells].leakage_inner + l[by_cells].leakage_outer), 1e-8 * Q);
@@ -132,6 +145,133 @@ TEST(CavitationFE, JfoResidualsByMatrixProductsGiveTheCellAssemblysSolution)
   EXPECT_NEAR(l[0].force_z, l[1].force_z, tolerance * std::abs(l[1].force_z));
   EXPECT_NEAR(l[0].moment_x, l[1].moment_x, tolerance * std::abs(l[1].force_z) * film.outer_radius);
   EXPECT_NEAR(l[0].leakage_outer, l[1].leakage_outer, tolerance * std::abs(l[1].leakage_outer));
+}
+
+TEST(CavitationFE, JfoGlobalMatricesAreTheAssemblyOfTheCellMatrices)
+{
+  // JFOSolver::prepare_global_matrices sums P A and G cell by cell straight into flat arrays in
+  // the system matrix's storage order, with the constrained rows' diagonal rule of deal.II's
+  // AffineConstraints::distribute_local_to_global (set_matrix_diagonals). Compared entry by entry
+  // with deal.II's assembly of the same cell matrices into the Trilinos matrix. Round-off bound:
+  // on quadrilaterals an entry (i, j) has a term from each cell holding both dofs, at most the 4
+  // cells around a vertex; any two summation orders of k = 4 terms t_c differ by at most
+  // 2 (k - 1) u sum |t_c| <= 6 u 4 max |t_c| = 12 eps max |t_c|, and a cell term is at most the
+  // largest entry of its matrix (P A: the cell matrices are symmetric positive semidefinite, so
+  // |A_c(i,j)| <= max A_c(i,i), and the diagonals sum terms of one sign; G: taken the same).
+  // The code adds the same terms in the same order, so it claims more (equal to the bit): the
+  // test prints how many entries differ at all. Degrees 1 and 2, a cavitating (wavy) case.
+  const FilmThickness film = wavy_film();
+  const OperatingConditions conditions = low_pressure();
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (const unsigned int degree : {1u, 2u})
+  {
+    ReynoldsSolver solver(MPI_COMM_WORLD);
+    solve(film, conditions, Cavitation::jfo, 4, 64, degree, &solver);
+    JFOSolver jfo(solver, 1.0);
+    const JFOSolver::GlobalMatricesAndAssembly m = jfo.global_matrices_and_assembly();
+    ASSERT_FALSE(m.PA.empty()) << "degree " << degree; // one rank, Dirichlet constraints only
+    ASSERT_EQ(m.PA.size(), m.assembled_PA.size());
+    ASSERT_EQ(m.G.size(), m.assembled_G.size());
+    ASSERT_EQ(m.PA.size(), m.G.size());
+    double largest_PA = 0, largest_G = 0;
+    for (std::size_t e = 0; e < m.PA.size(); ++e)
+    {
+      largest_PA = std::max(largest_PA, std::abs(m.assembled_PA[e]));
+      largest_G = std::max(largest_G, std::abs(m.assembled_G[e]));
+    }
+    const double bound_PA = 12 * eps * largest_PA, bound_G = 12 * eps * largest_G;
+    std::size_t different_bits = 0, nonzero = 0;
+    double worst_PA = 0, worst_G = 0;
+    for (std::size_t e = 0; e < m.PA.size(); ++e)
+    {
+      worst_PA = std::max(worst_PA, std::abs(m.PA[e] - m.assembled_PA[e]) / bound_PA);
+      worst_G = std::max(worst_G, std::abs(m.G[e] - m.assembled_G[e]) / bound_G);
+      // bit patterns (a signed zero counts as a difference)
+      different_bits += std::memcmp(&m.PA[e], &m.assembled_PA[e], sizeof(double)) != 0;
+      different_bits += std::memcmp(&m.G[e], &m.assembled_G[e], sizeof(double)) != 0;
+      nonzero += (m.assembled_PA[e] != 0) + (m.assembled_G[e] != 0);
+    }
+    std::cout << "degree " << degree << ": " << m.PA.size() << " entries each, " << nonzero
+              << " nonzero in P A and G; worst difference / bound: P A " << worst_PA << ", G "
+              << worst_G << "; " << different_bits << " entries differ in any bit\n";
+    EXPECT_GT(largest_G, 0.0);       // a cavitating case: G is not all zero
+    EXPECT_GT(nonzero, m.PA.size()); // not a comparison of zeros
+    EXPECT_LE(worst_PA, 1.0) << "degree " << degree;
+    EXPECT_LE(worst_G, 1.0) << "degree " << degree;
+  }
+}
+
+TEST(CavitationFE, JfoJacobianByColumnsGivesTheCellLoopsLinearisedLoads)
+{
+  // This case converges at the residual-only check after a successful polish, so its Jacobian at
+  // the solution, the one the linearised loads solve with, is the column combination of the
+  // global P A and G (JFOSolver::jacobian_by_columns): the counter shows the path ran. At the same
+  // solution the cell loop (assemble()) builds it again (JFOSolver::jacobian_at_solution).
+  // Column j is P A(:, j) + e_j G(:, j) or G(:, j) + e_j P A(:, j) with |e_j| <= 1 (the ratio of
+  // the complementarity derivatives, the smaller over the larger); the cell loop sums that per
+  // cell. Both evaluate sums of at most 4 cell terms (the cells around a vertex) each bounded by
+  // T = max |P A| + max |G| (the term bound of the test above), with a product and an addition
+  // more: they differ by at most 2 x 6 u x 4 T = 24 eps T per entry (and not at all where
+  // e_j = 0: x + 0 y = x). The linearised loads (a stiffness direction dh and a damping
+  // direction dh/dt) solve one system with either matrix and the same right-hand side: equal to
+  // the bit where no entry differs. The hook's by-columns Jacobian must give the loads of the
+  // solve's own (the same operations).
+  const FilmThickness film = wavy_film();
+  const OperatingConditions conditions = low_pressure();
+  const double eps = std::numeric_limits<double>::epsilon();
+  ReynoldsSolver solver(MPI_COMM_WORLD);
+  solver.cavitation.tolerance = 1e-10;
+  const unsigned int by_columns_before = JFOSolver::jacobians_by_columns,
+                     by_cells_before = JFOSolver::jacobians_by_cells;
+  const FilmLoads loads = solve(film, conditions, Cavitation::jfo, 16, 256, 2, &solver);
+  ASSERT_GT(loads.cavitated_fraction, 0.05);
+  EXPECT_EQ(JFOSolver::jacobians_by_columns - by_columns_before, 1u);
+  EXPECT_EQ(JFOSolver::jacobians_by_cells - by_cells_before, 0u);
+  const auto tilt_x = [](double r, double t) { return 1e-7 + 1e-5 * r * std::sin(t); };
+  const std::vector<FilmPerturbation> directions = {{tilt_x, {}}, {{}, tilt_x}};
+  const std::vector<FilmLoads> of_solve = solver.linearized_loads(directions);
+
+  JFOSolver jfo(solver, 1.0);
+  const JFOSolver::GlobalMatricesAndAssembly global = jfo.global_matrices_and_assembly();
+  ASSERT_FALSE(global.PA.empty());
+  double T = 0;
+  for (const auto *m : {&global.assembled_PA, &global.assembled_G})
+    T += std::abs(*std::max_element(m->begin(), m->end(),
+                                    [](double x, double y) { return std::abs(x) < std::abs(y); }));
+  const std::vector<double> by_columns = jfo.jacobian_at_solution(true);
+  ASSERT_FALSE(by_columns.empty());
+  const std::vector<FilmLoads> of_columns = solver.linearized_loads(directions);
+  const std::vector<double> by_cells = jfo.jacobian_at_solution(false);
+  ASSERT_EQ(by_cells.size(), by_columns.size());
+  const std::vector<FilmLoads> of_cells = solver.linearized_loads(directions);
+
+  double worst = 0;
+  std::size_t different = 0;
+  for (std::size_t e = 0; e < by_cells.size(); ++e)
+  {
+    worst = std::max(worst, std::abs(by_columns[e] - by_cells[e]) / (24 * eps * T));
+    different += by_columns[e] != by_cells[e];
+  }
+  std::cout << by_cells.size() << " Jacobian entries, " << different
+            << " differ; worst difference / bound " << worst << "\n";
+  EXPECT_LE(worst, 1.0);
+  for (std::size_t d = 0; d < directions.size(); ++d)
+  {
+    const char *name = d == 0 ? "stiffness" : "damping";
+    std::cout << name << ": dF/dh " << of_cells[d].force_z << " (cells), " << of_columns[d].force_z
+              << " (columns), dMx/dh " << of_cells[d].moment_x << ", " << of_columns[d].moment_x
+              << "\n";
+    ASSERT_NE(of_cells[d].force_z, 0.0) << name;
+    EXPECT_EQ(of_columns[d].force_z, of_solve[d].force_z) << name;
+    EXPECT_EQ(of_columns[d].moment_x, of_solve[d].moment_x) << name;
+    if (different == 0)
+    {
+      EXPECT_EQ(of_columns[d].force_z, of_cells[d].force_z) << name;
+      EXPECT_EQ(of_columns[d].moment_x, of_cells[d].moment_x) << name;
+      EXPECT_EQ(of_columns[d].moment_y, of_cells[d].moment_y) << name;
+    }
+  }
+  EXPECT_EQ(different, 0u); // e_j = 0 at every node of this solution (a_j + v_j > 0)
 }
 
 TEST(CavitationFE, JfoLowRankUpdateGivesTheFactorisedRoundsSolution)

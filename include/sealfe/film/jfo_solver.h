@@ -38,6 +38,28 @@ public:
   /// a numeric factorisation (1.56 s against 1.64 s on the tilted seal, 0.80 against 0.66 s on
   /// wavy_jfo), at 1.3e5 about half of one.
   static constexpr std::size_t low_rank_max_dofs = 250000;
+  /// Tests: solves (not start-only levels) whose Jacobian at the solution, the one the linearised
+  /// loads solve with, came from the global P A and G by columns (jacobian_by_columns: where the
+  /// converged iteration assembled only the residual, i.e. it followed a polish) or from the cell
+  /// loop (assemble()); counted since the program started, one of the two per solve.
+  static inline unsigned int jacobians_by_columns = 0, jacobians_by_cells = 0;
+
+  /// Test hook (tests/validation/cavitation_fe.cc): on a solver set up for JFO (after a run),
+  /// the flat P A and G of prepare_global_matrices next to deal.II's assembly of the same cell
+  /// matrices into a copy of the system matrix (AffineConstraints::distribute_local_to_global
+  /// with the homogeneous constraints), read in the same storage order; all empty where the
+  /// global matrices do not apply (several ranks, hanging nodes).
+  struct GlobalMatricesAndAssembly
+  {
+    std::vector<double> PA, G, assembled_PA, assembled_G;
+  };
+  GlobalMatricesAndAssembly global_matrices_and_assembly();
+  /// Test hook (tests/validation/cavitation_fe.cc): on a solver after a JFO run, the FB-Newton
+  /// Jacobian at its solution built again, by columns of the global P A and G
+  /// (jacobian_by_columns) or by the cell loop (assemble()), and left for the linearised loads
+  /// as solve() leaves it; returns its values in storage order (empty where by columns does not
+  /// apply, or where the solution's a, v from its pressure do not give the stored elimination).
+  std::vector<double> jacobian_at_solution(bool by_columns);
 
 private:
   /// Cell matrices A, G, F (state independent): once per solve, reused by every iteration.
