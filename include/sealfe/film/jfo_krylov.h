@@ -88,9 +88,10 @@ private:
 /// Stage-1 measurement (doc/performance.md, session 13), with SEALFE_JFO_KRYLOV_PROBE set: solve
 /// the active-set system (matrix, rhs) of a global round, whose direct solution `direct` took
 /// `direct_seconds`, by ActiveSetKrylov with the variants the variable lists (comma separated,
-/// each "ff:cc:tri", e.g. "amg:ilu:lower"; "1": amg:ilu:lower) to several relative tolerances,
-/// and print per variant and tolerance the iterations, the seconds, the largest difference to
-/// `direct`, and how many nodes' flip decision (base + w < -1e-12) differs from the direct one.
+/// each "ff:cc:tri", e.g. "amg:ilu:lower"; "1": amg:ilu:lower) to the relative tolerances 1e-6,
+/// 1e-8, 1e-10, and print per variant and tolerance the iterations, the seconds, the largest
+/// difference to `direct`, and how many nodes' flip decision (base + w < -1e-12) differs from the
+/// direct one.
 void probe_active_set_round(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                             const dealii::TrilinosWrappers::MPI::Vector &rhs,
                             const dealii::TrilinosWrappers::MPI::Vector &direct,
