@@ -983,6 +983,11 @@ void JFOSolver::probe_krylov(const VectorType &set_a, const VectorType &set_v,
   // Stage-1 measurement of session 13 (doc/performance.md): the global round's system by GMRES
   // with the block-triangular preconditioner, against the direct solution w just computed.
   const std::size_t n = s.dof_handler.n_dofs();
+  // SEALFE_JFO_KRYLOV_PROBE_MIN_DOFS: probe only the levels this large (the coarse levels of a
+  // 5e5-dof run would otherwise cost as much again)
+  if (const char *min_dofs = std::getenv("SEALFE_JFO_KRYLOV_PROBE_MIN_DOFS");
+      min_dofs && n < std::strtoull(min_dofs, nullptr, 10))
+    return;
   const double *pa = owned_values(set_a), *pv = owned_values(set_v);
   std::vector<char> full_film(n), is_constrained(n);
   std::vector<double> base_value(n), x(n), y(n);
