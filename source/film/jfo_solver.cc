@@ -1,3 +1,4 @@
+#include <sealfe/film/jfo_krylov.h>
 #include <sealfe/film/jfo_solver.h>
 #include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/reynolds_solver.h>
@@ -975,6 +976,45 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
   return true;
 }
 
+void JFOSolver::probe_krylov(const VectorType &set_a, const VectorType &set_v,
+                             const double direct_seconds, const unsigned int round,
+                             const char *variants)
+{
+  // Stage-1 measurement of session 13 (doc/performance.md): the global round's system by GMRES
+  // with the block-triangular preconditioner, against the direct solution w just computed.
+  const std::size_t n = s.dof_handler.n_dofs();
+  // SEALFE_JFO_KRYLOV_PROBE_MIN_DOFS: probe only the levels this large (the coarse levels of a
+  // 5e5-dof run would otherwise cost as much again)
+  if (const char *min_dofs = std::getenv("SEALFE_JFO_KRYLOV_PROBE_MIN_DOFS");
+      min_dofs && n < std::strtoull(min_dofs, nullptr, 10))
+    return;
+  const double *pa = owned_values(set_a), *pv = owned_values(set_v);
+  std::vector<char> full_film(n), is_constrained(n);
+  std::vector<double> base_value(n), x(n), y(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    is_constrained[i] = s.homogeneous_constraints.is_constrained(i);
+    full_film[i] = is_constrained[i] || pa[i] >= pv[i];
+    base_value[i] = pa[i] >= pv[i] ? pa[i] : pv[i];
+  }
+  FEValues<2> fe_values(*s.mapping, *s.fe, Quadrature<2>(s.fe->get_unit_support_points()),
+                        update_quadrature_points);
+  std::vector<types::global_dof_index> dofs(s.fe->n_dofs_per_cell());
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    cell->get_dof_indices(dofs);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+    {
+      x[dofs[i]] = fe_values.quadrature_point(i)[0];
+      y[dofs[i]] = fe_values.quadrature_point(i)[1];
+    }
+  }
+  probe_active_set_round(s.system_matrix, newton_rhs, w, full_film, is_constrained, base_value, x,
+                         y, s.polynomial_degree, flow_scale, direct_seconds, round, variants,
+                         std::cerr);
+}
+
 bool JFOSolver::polish()
 {
   // Active-set polish: with the cavitated set fixed the discrete problem is linear. Starting
@@ -1017,8 +1057,15 @@ bool JFOSolver::polish()
       // the confirming rounds differ from the last factorised one in few columns
       if (!low_rank_solve(set_a, set_v))
       {
+        const auto direct_start = std::chrono::steady_clock::now();
         s.factorize(false, true);
         s.solve_linear_system(newton_rhs, w);
+        if (const char *probe = std::getenv("SEALFE_JFO_KRYLOV_PROBE"); probe && serial)
+          probe_krylov(
+              set_a, set_v,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - direct_start)
+                  .count(),
+              global_rounds, probe);
         remember_factored_set(set_a, set_v);
       }
     }

@@ -108,6 +108,10 @@ private:
   /// low_rank_limit columns changed, or the update is refused (near-singular, or its backward
   /// error above the bound).
   bool low_rank_solve(const VectorType &set_a, const VectorType &set_v);
+  /// With SEALFE_JFO_KRYLOV_PROBE (one rank): the global round's system just solved directly (w)
+  /// also by ActiveSetKrylov's variants `variants`, printed to stderr (jfo_krylov.h).
+  void probe_krylov(const VectorType &set_a, const VectorType &set_v, double direct_seconds,
+                    unsigned int round, const char *variants);
   /// After a factorisation of a global round's Jacobian: remember its set for low_rank_solve.
   void remember_factored_set(const VectorType &set_a, const VectorType &set_v);
   /// Active-set polish from the set of the current iterate; true if it found the exact solution
