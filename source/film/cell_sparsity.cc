@@ -10,6 +10,7 @@
 #include <Epetra_CrsGraph.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
+#include <Epetra_Util.h>
 
 #include <algorithm>
 #include <limits>
@@ -36,9 +37,9 @@ std::vector<types::global_dof_index> rank_ranges(const IndexSet &owned, MPI_Comm
 /// (owned dofs and ghosts), sends the ghosts' rows to their owners and merges the rows it
 /// receives: the rows DoFTools' (MGTools') pattern gets from SparsityTools::
 /// distribute_sparsity_pattern. The column map is the one Epetra makes for deal.II's matrix
-/// (FillComplete without a column map): the owned dofs in order, then the other columns by
-/// owner and number (by number: the ranks own consecutive ranges in rank order), so every row
-/// is stored in the same order as deal.II's and a product sums in the same order.
+/// (FillComplete without a column map): the owned dofs in order, then the other columns in the
+/// order the rows meet them, grouped by owner; so every row is stored in the same order as
+/// deal.II's and a matrix-vector product sums in the same order.
 void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &owned,
                         const std::vector<unsigned int> &cell_dofs, const unsigned int m,
                         const AffineConstraints<double> &constraints,
@@ -73,10 +74,12 @@ void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &
   std::vector<char> constrained(n_touched, 0);
   if (!keep_constrained_dofs)
     for (const auto &line : constraints.get_lines())
+    {
       if (is_owned(line.index))
         constrained[line.index - begin] = 1;
       else if (std::binary_search(ghosts.begin(), ghosts.end(), line.index))
         constrained[ghost_index(line.index)] = 1;
+    }
 
   // the cells around each dof (compressed rows)
   std::vector<unsigned int> first_cell(n_touched + 1, 0);
@@ -93,7 +96,6 @@ void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &
   std::vector<int> length(n_owned);
   std::vector<unsigned int> columns, row, mark(n_touched, numbers::invalid_unsigned_int);
   columns.reserve(std::size_t(n_owned) * 2 * m);
-  std::vector<char> ghost_is_column(ghosts.size(), 0);
   std::vector<std::vector<unsigned int>> send(n_ranks);
   for (unsigned int t = 0; t < n_touched; ++t)
   {
@@ -115,9 +117,6 @@ void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &
     {
       length[t] = int(row.size());
       columns.insert(columns.end(), row.begin(), row.end());
-      for (const unsigned int c : row)
-        if (c >= n_owned)
-          ghost_is_column[c - n_owned] = 1;
     }
     else
     {
@@ -162,49 +161,82 @@ void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &
   }
   std::sort(extra.begin(), extra.end());
 
-  // the column map: the owned dofs in order, then the others by number
-  std::vector<int> column_dofs(n_owned);
-  std::iota(column_dofs.begin(), column_dofs.end(), int(begin));
-  std::vector<unsigned int> others;
-  for (std::size_t g = 0; g < ghosts.size(); ++g)
-    if (ghost_is_column[g])
-      others.push_back(ghosts[g]);
-  for (const auto &e : extra)
-    if (!is_owned(e.second))
-      others.push_back(e.second);
-  std::sort(others.begin(), others.end());
-  others.erase(std::unique(others.begin(), others.end()), others.end());
-  column_dofs.insert(column_dofs.end(), others.begin(), others.end());
-  const auto column_of = [&](const unsigned int d)
-  {
-    return int(is_owned(d) ? d - begin
-                           : n_owned + (std::lower_bound(others.begin(), others.end(), d) -
-                                        others.begin()));
-  };
-  std::vector<int> ghost_column(ghosts.size(), -1);
-  for (std::size_t g = 0; g < ghosts.size(); ++g)
-    if (ghost_is_column[g])
-      ghost_column[g] = column_of(ghosts[g]);
-
-  // the rows by local column index, sorted (as Epetra stores them)
-  std::vector<int> local_columns;
-  local_columns.reserve(columns.size() + extra.size());
+  // each owned row by dof number, sorted: the rows deal.II's graph receives (the dynamic
+  // pattern's rows, by increasing number, through InsertGlobalIndices)
+  std::vector<unsigned int> global_columns;
+  global_columns.reserve(columns.size() + extra.size());
   std::size_t offset = 0, q = 0;
   for (unsigned int i = 0; i < n_owned; ++i)
   {
-    const std::size_t start = local_columns.size();
+    const std::size_t start = global_columns.size();
     for (int k = 0; k < length[i]; ++k)
     {
       const unsigned int c = columns[offset + k];
-      local_columns.push_back(c < n_owned ? int(c) : ghost_column[c - n_owned]);
+      global_columns.push_back(c < n_owned ? begin + c : ghosts[c - n_owned]);
     }
     offset += length[i];
     for (; q < extra.size() && extra[q].first == i; ++q)
-      local_columns.push_back(column_of(extra[q].second));
-    std::sort(local_columns.begin() + start, local_columns.end());
-    local_columns.erase(std::unique(local_columns.begin() + start, local_columns.end()),
-                        local_columns.end());
-    length[i] = int(local_columns.size() - start);
+      global_columns.push_back(extra[q].second);
+    std::sort(global_columns.begin() + start, global_columns.end());
+    global_columns.erase(std::unique(global_columns.begin() + start, global_columns.end()),
+                         global_columns.end());
+    length[i] = int(global_columns.size() - start);
+  }
+
+  // the column map Epetra makes for deal.II's graph (Epetra_CrsGraph::MakeColMap, Trilinos
+  // 13.2): the owned dofs in order (each is in its own row), then the others in the order the
+  // rows meet them, sorted by owner with Epetra's own (shell) sort, which is not stable, so
+  // called here on the same lists
+  std::vector<unsigned int> others;
+  for (const unsigned int c : global_columns)
+    if (!is_owned(c))
+      others.push_back(c);
+  std::sort(others.begin(), others.end());
+  others.erase(std::unique(others.begin(), others.end()), others.end());
+  const auto other_index = [&](const unsigned int d)
+  { return std::size_t(std::lower_bound(others.begin(), others.end(), d) - others.begin()); };
+  std::vector<int> met(others.size(), -1), remote_dofs, remote_owners;
+  std::vector<char> owned_met(n_owned, 0);
+  for (const unsigned int c : global_columns)
+    if (is_owned(c))
+      owned_met[c - begin] = 1;
+    else if (int &order = met[other_index(c)]; order < 0)
+    {
+      order = int(remote_dofs.size());
+      remote_dofs.push_back(int(c));
+      remote_owners.push_back(int(owner(c)));
+    }
+  AssertThrow(std::find(owned_met.begin(), owned_met.end(), 0) == owned_met.end(),
+              ExcMessage("CellSparsity: an owned dof without its column"));
+  if (!remote_dofs.empty())
+  {
+    int *companions[1] = {remote_dofs.data()};
+    Epetra_Util::Sort(true, int(remote_dofs.size()), remote_owners.data(), 0, nullptr, 1,
+                      companions);
+  }
+  std::vector<int> column_dofs(n_owned);
+  std::iota(column_dofs.begin(), column_dofs.end(), int(begin));
+  column_dofs.insert(column_dofs.end(), remote_dofs.begin(), remote_dofs.end());
+  std::vector<int> other_column(others.size());
+  for (std::size_t r = 0; r < remote_dofs.size(); ++r)
+    other_column[other_index(remote_dofs[r])] = int(n_owned + r);
+
+  // the rows by local column index, sorted (as Epetra stores them): the owned columns keep
+  // their order, a row with others is sorted again
+  std::vector<int> local_columns(global_columns.size());
+  offset = 0;
+  for (unsigned int i = 0; i < n_owned; ++i)
+  {
+    bool with_others = false;
+    for (int k = 0; k < length[i]; ++k)
+    {
+      const unsigned int c = global_columns[offset + k];
+      with_others = with_others || !is_owned(c);
+      local_columns[offset + k] = is_owned(c) ? int(c - begin) : other_column[other_index(c)];
+    }
+    if (with_others)
+      std::sort(local_columns.begin() + offset, local_columns.begin() + offset + length[i]);
+    offset += length[i];
   }
 
   const Epetra_Map row_map = owned.make_trilinos_map(comm, false);
@@ -437,8 +469,8 @@ void CellSparsity::add(TrilinosWrappers::MPI::Vector &vector, const Vector<doubl
   for (unsigned int i = 0; i < dofs.size(); ++i)
     if (dofs[i] >= begin && dofs[i] - begin < n_owned)
       owned_values[dofs[i] - begin] += cell_vector(i);
-    else if (cell_vector(i) != 0) // kept until compress(); zeros left out, as by deal.II
-      vector.add(1, &dofs[i], &cell_vector(i));
+    else if (const double value = cell_vector(i); value != 0)
+      vector.add(1, &dofs[i], &value); // kept until compress(); zeros left out, as by deal.II
 }
 
 } // namespace sealfe

@@ -1,19 +1,20 @@
-// CellSparsity (one rank, Dirichlet constraints only) builds the sparsity pattern of deal.II's
-// generic path (DoFTools::make_sparsity_pattern with keep_constrained_dofs = false for the system
-// matrix, MGTools::make_sparsity_pattern with the level boundary constraints for the multigrid
-// levels, then the Trilinos matrix) from the cells' dofs by local index, and adds a cell without
-// constrained dofs by position. That is an identity, not an approximation: the same entries, and
-// every matrix and right-hand side entry receives the same additions in the same order. So the
-// patterns must be equal entry for entry and the assembled matrices and vectors equal to the bit
-// (exact comparisons, no tolerance), on every level of a graded annulus refined from its coarse
-// grid, degrees 1-3. A missing entry makes add() throw (third part); an extra or missing entry
-// fails the row comparison. The first test's meshes are on MPI_COMM_SELF (one rank, also under
-// mpirun); the second splits the mesh among the ranks of MPI_COMM_WORLD (ctest runs it on 2 and
-// 3 ranks, `cell_sparsity_on_several_ranks`): each rank sends the rows of the dofs it does not
-// own to their owners, and adds those rows of its cells through the Epetra matrix's off-rank
-// store, as deal.II does, so that each owned entry receives its rank's cells in cell order and
-// then each other rank's sum: again the same additions in the same order, and the rows must be
-// stored in the same order (same column map), so compared exactly as well.
+// CellSparsity (Dirichlet constraints only, one owned range per rank) builds the sparsity pattern
+// of deal.II's generic path (DoFTools::make_sparsity_pattern with keep_constrained_dofs = false for
+// the system matrix, MGTools::make_sparsity_pattern with the level boundary constraints for the
+// multigrid levels, then the Trilinos matrix) from the cells' dofs by local index, and adds a cell
+// without constrained dofs by position. That is an identity, not an approximation: the same
+// entries, and every matrix and right-hand side entry receives the same additions in the same
+// order. So the patterns must be equal entry for entry and the assembled matrices and vectors equal
+// to the bit (exact comparisons, no tolerance), on every level of a graded annulus refined from its
+// coarse grid, degrees 1-3. A missing entry makes add() throw (third part); an extra or missing
+// entry fails the row comparison. The first test's meshes are on MPI_COMM_SELF (one rank, also
+// under mpirun); the second splits the mesh among the ranks of MPI_COMM_WORLD (ctest runs it on 2
+// and 3 ranks: `cell_sparsity_on_2_ranks`, `cell_sparsity_on_3_ranks`): each rank sends the rows of
+// the dofs it does not own to their owners, and adds those rows of its cells into the Epetra
+// matrix's own off-rank store (deal.II's matrix: into a separate off-rank matrix); both are added
+// to the owners' entries by an Epetra_Export at compress(), so that each owned entry receives its
+// rank's cells in cell order and then each other rank's sum: again the same additions in the same
+// order, and the rows must be stored in the same order (same column map), so compared exactly too.
 #include <sealfe/film/annulus_mesh.h>
 #include <sealfe/film/cell_sparsity.h>
 
@@ -385,4 +386,23 @@ TEST(CellSparsity, RefusesConstraintsThatCoupleDofs)
   IndexSet part(10);
   part.add_range(0, 5);
   EXPECT_FALSE(CellSparsity::applies(part, dirichlet, MPI_COMM_SELF)); // not every dof owned
+}
+
+TEST(CellSparsity, RefusesOwnershipOtherThanOneRangePerRankOnSeveralRanks)
+{
+  // a dof's owner must follow from the ranges: one range per rank, in rank order, all dofs
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm),
+                     rank = Utilities::MPI::this_mpi_process(comm), n = 4 * n_ranks;
+  AffineConstraints<double> dirichlet;
+  dirichlet.add_line(0);
+  dirichlet.close();
+  IndexSet in_order(n), reversed(n), interleaved(n);
+  in_order.add_range(4 * rank, 4 * rank + 4);
+  reversed.add_range(4 * (n_ranks - 1 - rank), 4 * (n_ranks - rank));
+  for (unsigned int i = rank; i < n; i += n_ranks)
+    interleaved.add_index(i);
+  EXPECT_TRUE(CellSparsity::applies(in_order, dirichlet, comm));
+  EXPECT_EQ(CellSparsity::applies(reversed, dirichlet, comm), n_ranks == 1);
+  EXPECT_EQ(CellSparsity::applies(interleaved, dirichlet, comm), n_ranks == 1);
 }

@@ -29,7 +29,8 @@ namespace sealfe
 /// order (deal.II's numbering: a dof's owner follows from the ranges); else the caller keeps
 /// deal.II's generic path (applies() is false). On several ranks each rank builds the rows of
 /// its cells' dofs and sends the rows of dofs it does not own to their owners, and a cell's
-/// rows of such dofs go through the Epetra matrix's own off-rank store, as deal.II's do.
+/// rows of such dofs go into the Epetra matrix's own off-rank store (deal.II's: a separate
+/// off-rank matrix), both added to the owners' entries by an Epetra_Export at compress().
 class CellSparsity
 {
 public:
@@ -45,8 +46,8 @@ public:
   /// ones, and a constrained row holds only its diagonal; true (MGTools' level pattern): all of
   /// them. One rank: column map = row map, so a local column index is the dof number; several:
   /// `cell_dofs` are this rank's cells' (active_cell_dofs, level_cell_dofs), the column map
-  /// is the owned dofs in order and then the others by number (Epetra's for deal.II's matrix:
-  /// the rows stored in the same order). Collective on several ranks.
+  /// is the owned dofs in order and then the others as Epetra orders them for deal.II's matrix
+  /// (the rows stored in the same order). Collective on several ranks.
   static void reinit(dealii::TrilinosWrappers::SparseMatrix &matrix, const dealii::IndexSet &owned,
                      const std::vector<unsigned int> &cell_dofs, unsigned int dofs_per_cell,
                      const dealii::AffineConstraints<double> &constraints,
@@ -69,7 +70,7 @@ public:
   /// same one addition, so the sums over the cells in the same order are the same bits). The
   /// matrix must come from reinit() (an owned column's local index is its place in the owned
   /// range); throws if an entry is not in its pattern. The rows of dofs another rank owns go to
-  /// matrix.add (kept by Epetra until compress), zeros left out as by deal.II.
+  /// matrix.add (kept by Epetra until compress()).
   static void add(dealii::TrilinosWrappers::SparseMatrix &matrix,
                   const dealii::FullMatrix<double> &cell_matrix,
                   const std::vector<dealii::types::global_dof_index> &dofs);
