@@ -420,6 +420,14 @@ void CellSparsity::add(TrilinosWrappers::SparseMatrix &matrix,
   const unsigned int n_owned = E.NumMyRows();
   const auto owned = [&](const types::global_dof_index d)
   { return d >= begin && d - begin < n_owned; };
+  // a cell without owned dofs (several ranks): every row another rank's, and its dofs need
+  // not be columns here
+  if (std::none_of(dofs.begin(), dofs.end(), owned))
+  {
+    for (unsigned int i = 0; i < m; ++i)
+      matrix.add(dofs[i], m, dofs.data(), &cell_matrix(i, 0), true, false);
+    return;
+  }
   int column[max_dofs];
   for (unsigned int k = 0; k < m; ++k)
   {
