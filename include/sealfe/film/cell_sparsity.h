@@ -23,12 +23,12 @@ namespace sealfe
 /// their global index lookups and dynamic pattern. Measured at 1.05e6 Q2 dofs (128 x 2048 cells,
 /// benchmarks/reynolds_speed/case.prm with cg-gmg, one rank, session 11; doc/performance.md,
 /// "cg-gmg at 1.05e6 dofs: structured set-up"): system sparsity + matrix 0.39 -> 0.24 s, level
-/// sparsity 0.12 -> 0.05 s, assembly -0.07 s, level assembly -0.035 s; on two ranks session 13.
-/// Only where it is provably the same: every constraint a Dirichlet one (a line without
-/// entries, which adds no coupling) and each rank owning one range of dofs, the ranges in rank
-/// order (deal.II's numbering: a dof's owner follows from the ranges); else the caller keeps
-/// deal.II's generic path (applies() is false). On several ranks each rank builds the rows of
-/// its cells' dofs and sends the rows of dofs it does not own to their owners, and a cell's
+/// sparsity 0.12 -> 0.05 s, assembly -0.07 s, level assembly -0.035 s; two ranks (session 14):
+/// whole process 3.77 -> 3.37 s. Only where it is provably the same: every constraint a Dirichlet
+/// one (a line without entries, which adds no coupling) and each rank owning one range of dofs, the
+/// ranges in rank order (deal.II's numbering: a dof's owner follows from the ranges); else the
+/// caller keeps deal.II's generic path (applies() is false). On several ranks each rank builds the
+/// rows of its cells' dofs and sends the rows of dofs it does not own to their owners, and a cell's
 /// rows of such dofs go into the Epetra matrix's own off-rank store (deal.II's: a separate
 /// off-rank matrix), both added to the owners' entries by an Epetra_Export at compress().
 class CellSparsity
