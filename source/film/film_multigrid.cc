@@ -178,8 +178,8 @@ struct FilmMultigrid::Data
 {
   MGConstrainedDoFs constrained_dofs;
   std::vector<AffineConstraints<double>> level_constraints;
-  /// [l]: level l's matrix has CellSparsity's pattern (set in setup: one rank, boundary
-  /// constraints only), so prepare adds the cells without boundary dofs by position.
+  /// [l]: level l's matrix has CellSparsity's pattern (set in setup: boundary constraints only,
+  /// one owned range per rank), so prepare adds the cells without boundary dofs by position.
   std::vector<char> by_position;
   std::vector<RadialLines> lines;
   MGLevelObject<MatrixType> level_matrices; // the assembled ones
@@ -333,8 +333,8 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
     c.add_lines(data->constrained_dofs.get_boundary_indices(l));
     c.close();
     const IndexSet &owned = dof_handler->locally_owned_mg_dofs(l);
-    // one rank (boundary constraints only): MGTools' pattern from the level cells' dofs by local
-    // index, and the level assembly adds the cells without boundary dofs by position
+    // boundary constraints only: MGTools' pattern from the level cells' dofs by local index, and
+    // the level assembly adds the cells without boundary dofs by position
     data->by_position[l] = CellSparsity::applies(owned, c, comm);
     if (data->by_position[l])
     {

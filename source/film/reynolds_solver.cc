@@ -133,9 +133,9 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
 
   lap("setup: index sets, zero constraints, boundary dofs");
   // The constrained dofs are the same with any Dirichlet data: one sparsity pattern per mesh.
-  // One rank with Dirichlet constraints only (no hanging nodes: CellSparsity::applies): the
-  // same pattern from the cells' dofs by local index, and the assembly adds the cells without
-  // constrained dofs by position; else (several ranks, other constraints) deal.II's generic path.
+  // Dirichlet constraints only (no hanging nodes) and one owned range per rank
+  // (CellSparsity::applies): the same pattern from the cells' dofs by local index, and the
+  // assembly adds the cells without constrained dofs by position; else deal.II's generic path.
   matrix_by_position =
       CellSparsity::applies(locally_owned_dofs, homogeneous_constraints, mpi_communicator);
   if (matrix_by_position)
@@ -227,7 +227,6 @@ void ReynoldsSolver::assemble_system()
 
   // The matrix has CellSparsity's pattern where it applies (matrix_by_position, setup_system),
   // and the cells without constrained dofs are added by position.
-  double *const rhs = system_rhs.begin(); // the owned entries (by position: one rank)
   try
   {
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -244,13 +243,12 @@ void ReynoldsSolver::assemble_system()
           cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
         if (gather)
           affine_loads.add_cell(relevant_index);
-        // a cell without constrained dofs: the same sums as distribute_local_to_global, by
-        // position (one rank: the dof number is the local index of the row and column)
+        // a cell without constrained dofs: the same sums as distribute_local_to_global, the
+        // owned rows by position
         if (matrix_by_position && CellSparsity::unconstrained(constraints, local_dof_indices))
         {
           CellSparsity::add(system_matrix, cell_matrix, local_dof_indices);
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            rhs[local_dof_indices[i]] += cell_rhs(i);
+          CellSparsity::add(system_rhs, cell_rhs, local_dof_indices);
         }
         else
           constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,

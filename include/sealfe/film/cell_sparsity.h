@@ -1,5 +1,5 @@
-// CellSparsity: on one rank, the sparsity of a matrix assembled cell by cell with Dirichlet
-// constraints only, built by local index from the cells' dofs, and cell matrices added by position.
+// CellSparsity: the sparsity of a matrix assembled cell by cell with Dirichlet constraints only,
+// built from the cells' dofs by local index, and cell matrices added by position.
 #pragma once
 
 #include <deal.II/base/index_set.h>
@@ -7,6 +7,8 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include <mpi.h>
 
@@ -15,20 +17,26 @@
 namespace sealfe
 {
 /// The same sparsity pattern as DoFTools::make_sparsity_pattern(..., constraints, false) (or
-/// MGTools' on a level) followed by TrilinosWrappers::SparseMatrix::reinit, and the same sums
-/// as AffineConstraints::distribute_local_to_global for a cell without constrained dofs, without
+/// MGTools' on a level), SparsityTools::distribute_sparsity_pattern and
+/// TrilinosWrappers::SparseMatrix::reinit, and the same sums as
+/// AffineConstraints::distribute_local_to_global for a cell without constrained dofs, without
 /// their global index lookups and dynamic pattern. Measured at 1.05e6 Q2 dofs (128 x 2048 cells,
 /// benchmarks/reynolds_speed/case.prm with cg-gmg, one rank, session 11; doc/performance.md,
 /// "cg-gmg at 1.05e6 dofs: structured set-up"): system sparsity + matrix 0.39 -> 0.24 s, level
-/// sparsity 0.12 -> 0.05 s, assembly -0.07 s, level assembly -0.035 s. Only where it is provably
-/// the same: one rank owning every dof (local index = global number) and every constraint a
-/// Dirichlet one (a line without entries, which adds no coupling); else the caller keeps
-/// deal.II's generic path (applies() is false).
+/// sparsity 0.12 -> 0.05 s, assembly -0.07 s, level assembly -0.035 s; two ranks (session 14):
+/// whole process 3.77 -> 3.37 s. Only where it is provably the same: every constraint a Dirichlet
+/// one (a line without entries, which adds no coupling) and each rank owning one range of dofs, the
+/// ranges in rank order (deal.II's numbering: a dof's owner follows from the ranges); else the
+/// caller keeps deal.II's generic path (applies() is false). On several ranks each rank builds the
+/// rows of its cells' dofs and sends the rows of dofs it does not own to their owners, and a cell's
+/// rows of such dofs go into the Epetra matrix's own off-rank store (deal.II's: a separate
+/// off-rank matrix), both added to the owners' entries by an Epetra_Export at compress().
 class CellSparsity
 {
 public:
-  /// Whether the path applies: one rank in `comm`, `owned` all dofs 0..n-1, and every
-  /// constraint line of `constraints` without entries.
+  /// Whether the path applies: every constraint line of `constraints` without entries, and
+  /// `owned` all dofs 0..n-1 on one rank, or on several one range per rank, the ranges in rank
+  /// order. Collective on several ranks (all of them get the same answer).
   static bool applies(const dealii::IndexSet &owned,
                       const dealii::AffineConstraints<double> &constraints, MPI_Comm comm);
 
@@ -36,16 +44,19 @@ public:
   /// (`dofs_per_cell` numbers per cell): row i holds the dofs of the cells around i (sorted).
   /// keep_constrained_dofs = false (DoFTools' pattern of the system): without the constrained
   /// ones, and a constrained row holds only its diagonal; true (MGTools' level pattern): all of
-  /// them. Column map = row map, so a local column index is the dof number.
+  /// them. One rank: column map = row map, so a local column index is the dof number; several:
+  /// `cell_dofs` are this rank's cells' (active_cell_dofs, level_cell_dofs), the column map
+  /// is the owned dofs in order and then the others as Epetra orders them for deal.II's matrix
+  /// (the rows stored in the same order). Collective on several ranks.
   static void reinit(dealii::TrilinosWrappers::SparseMatrix &matrix, const dealii::IndexSet &owned,
                      const std::vector<unsigned int> &cell_dofs, unsigned int dofs_per_cell,
                      const dealii::AffineConstraints<double> &constraints,
                      bool keep_constrained_dofs, MPI_Comm comm);
 
   /// The dof numbers of the active cells of `dof_handler`, cell after cell in the order of
-  /// active_cell_iterators() (reinit's `cell_dofs` for the system; one rank: every cell owned).
+  /// active_cell_iterators(), the locally owned ones (reinit's `cell_dofs` for the system).
   static std::vector<unsigned int> active_cell_dofs(const dealii::DoFHandler<2> &dof_handler);
-  /// The same with the level dofs of the cells of `level` (mg_cell_iterators_on_level()).
+  /// The same with the level dofs of this rank's cells of `level` (mg_cell_iterators_on_level()).
   static std::vector<unsigned int> level_cell_dofs(const dealii::DoFHandler<2> &dof_handler,
                                                    unsigned int level);
 
@@ -57,10 +68,16 @@ public:
   /// matrix(dofs[i], dofs[j]) += cell_matrix(i, j) for every i, j: what
   /// distribute_local_to_global adds for a cell without constrained dofs (each entry receives the
   /// same one addition, so the sums over the cells in the same order are the same bits). The
-  /// matrix must come from reinit() (local column index = dof number); throws if an entry is not
-  /// in its pattern.
+  /// matrix must come from reinit() (an owned column's local index is its place in the owned
+  /// range); throws if an entry is not in its pattern. The rows of dofs another rank owns go to
+  /// matrix.add (kept by Epetra until compress()).
   static void add(dealii::TrilinosWrappers::SparseMatrix &matrix,
                   const dealii::FullMatrix<double> &cell_matrix,
+                  const std::vector<dealii::types::global_dof_index> &dofs);
+  /// vector(dofs[i]) += cell_vector(i): the owned entries by position, the others through
+  /// vector.add (kept until compress; zeros left out, as by distribute_local_to_global).
+  static void add(dealii::TrilinosWrappers::MPI::Vector &vector,
+                  const dealii::Vector<double> &cell_vector,
                   const std::vector<dealii::types::global_dof_index> &dofs);
 };
 
