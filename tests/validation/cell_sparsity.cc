@@ -175,8 +175,7 @@ TEST(CellSparsity, SamePatternAndSumsAsTheGenericPathOnEveryLevel)
       {
         ++by_position;
         CellSparsity::add(direct, cell_matrix, dofs);
-        for (unsigned int i = 0; i < n; ++i)
-          direct_rhs.begin()[dofs[i]] += cell_rhs(i);
+        CellSparsity::add(direct_rhs, cell_rhs, dofs);
       }
       else
         constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, direct, direct_rhs);
