@@ -15,6 +15,7 @@
 // to the owners' entries by an Epetra_Export at compress(), so that each owned entry receives its
 // rank's cells in cell order and then each other rank's sum: again the same additions in the same
 // order, and the rows must be stored in the same order (same column map), so compared exactly too.
+#include "../graded_annulus.h"
 #include <sealfe/film/annulus_mesh.h>
 #include <sealfe/film/cell_sparsity.h>
 
@@ -124,18 +125,10 @@ void fill(FullMatrix<double> &A, Vector<double> &F, const unsigned int cell)
 TEST(CellSparsity, SamePatternAndSumsAsTheGenericPathOnEveryLevel)
 {
   const MPI_Comm comm = MPI_COMM_SELF;
-  const double ri = 0.0355, ro = 0.0408;
   for (const unsigned int degree : {1u, 2u, 3u})
   {
-    AnnulusMesh m;
-    m.radial_cells = 8;
-    m.circumferential_cells = 64; // refined from 2 x 16 cells: 3 levels
-    m.grading_clearance = 1e-6;
-    m.grading_coning = 1e-3;
-    parallel::distributed::Triangulation<2> tria(
-        comm, Triangulation<2>::limit_level_difference_at_vertices,
-        parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
-    m.create(tria, ri, ro, 0);
+    test::GradedAnnulus annulus(comm);
+    auto &tria = annulus.tria;
     ASSERT_EQ(tria.n_global_levels(), 3u);
     const FE_Q<2> fe(degree);
     DoFHandler<2> dof_handler(tria);
@@ -248,18 +241,10 @@ TEST(CellSparsity, SamePatternStorageAndSumsAsTheGenericPathOnSeveralRanks)
   const MPI_Comm comm = MPI_COMM_WORLD;
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm),
                      rank = Utilities::MPI::this_mpi_process(comm);
-  const double ri = 0.0355, ro = 0.0408;
   for (const unsigned int degree : {1u, 2u, 3u})
   {
-    AnnulusMesh m;
-    m.radial_cells = 8;
-    m.circumferential_cells = 64; // refined from 2 x 16 cells: 3 levels, 32 trees to split
-    m.grading_clearance = 1e-6;
-    m.grading_coning = 1e-3;
-    parallel::distributed::Triangulation<2> tria(
-        comm, Triangulation<2>::limit_level_difference_at_vertices,
-        parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
-    m.create(tria, ri, ro, 0);
+    test::GradedAnnulus annulus(comm); // 32 coarse cells (trees) to split among the ranks
+    auto &tria = annulus.tria;
     ASSERT_EQ(tria.n_global_levels(), 3u);
     const FE_Q<2> fe(degree);
     DoFHandler<2> dof_handler(tria);

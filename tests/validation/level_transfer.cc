@@ -15,6 +15,7 @@
 // |P_ij| <= Lambda_1 <= 1.7 in 1D squared (< 3): at most (2 m + 4) u 3 m |y|_inf. The vectors
 // are random in [-1/2, 1/2]. A missing or extra entry (a wrong embedding or boundary column)
 // differs by O(1) and fails.
+#include "../graded_annulus.h"
 #include <sealfe/film/annulus_mesh.h>
 #include <sealfe/film/level_transfer.h>
 
@@ -75,15 +76,8 @@ TEST_P(LevelTransferTest, EqualsMGTransferPrebuiltOnEveryLevel)
 {
   const unsigned int degree = GetParam();
   const MPI_Comm comm = MPI_COMM_WORLD;
-  AnnulusMesh m;
-  m.radial_cells = 8;
-  m.circumferential_cells = 64; // refined from 2 x 16 cells: 3 levels
-  m.grading_clearance = 1e-6;
-  m.grading_coning = 1e-3;
-  parallel::distributed::Triangulation<2> tria(
-      comm, Triangulation<2>::limit_level_difference_at_vertices,
-      parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
-  m.create(tria, 0.0355, 0.0408, 0);
+  test::GradedAnnulus annulus(comm);
+  auto &tria = annulus.tria;
   ASSERT_EQ(tria.n_global_levels(), 3u);
   const FE_Q<2> fe(degree);
   DoFHandler<2> dof_handler(tria);

@@ -10,6 +10,7 @@
 // than wide: observed up to ~100 u ro / h_r (k = 3), bounded here by 1000 u ro / h_r. The loads
 // of a direct (KLU) solve move with the matrix entries by at most the condition number (~1e5 on
 // these meshes) times their round-off.
+#include "../graded_annulus.h"
 #include <sealfe/film/annulus_mesh.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
@@ -30,18 +31,11 @@ using namespace dealii;
 
 TEST(PolarCellValues, EqualFEValuesOnEveryCellOfEveryLevel)
 {
-  const double ri = 0.0355, ro = 0.0408;
+  const double ri = test::GradedAnnulus::ri, ro = test::GradedAnnulus::ro;
   for (const unsigned int degree : {1u, 2u, 3u})
   {
-    AnnulusMesh m;
-    m.radial_cells = 8;
-    m.circumferential_cells = 64; // refined from 1 x 16 cells: 4 levels
-    m.grading_clearance = 1e-6;
-    m.grading_coning = 1e-3;
-    parallel::distributed::Triangulation<2> tria(
-        MPI_COMM_WORLD, Triangulation<2>::limit_level_difference_at_vertices,
-        parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
-    m.create(tria, ri, ro, 0);
+    test::GradedAnnulus annulus(MPI_COMM_WORLD);
+    auto &tria = annulus.tria;
     const FE_Q<2> fe(degree);
     MappingQCache<2> mapping(degree);
     mapping.initialize(MappingQ<2>(degree), tria);
