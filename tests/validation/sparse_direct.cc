@@ -383,6 +383,7 @@ TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
     EXPECT_EQ(x[i], x_serial[i]) << i;
   // and the band solve is the principal subsystem's: row i of A_SS x_S = b_S
   for (const auto i : owned)
+  {
     if (band[i])
     {
       double row = 0;
@@ -393,4 +394,5 @@ TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
     }
     else
       EXPECT_EQ(x[i], -7.0) << i;
+  }
 }
