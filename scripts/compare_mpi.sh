@@ -71,6 +71,16 @@ print(f"linear solver of {len(files)} runs = {methods}")
 sys.exit(0 if methods == expected else 1)
 PY
 }
+# bands SUMMARY1 SUMMARY...: the runs on several ranks take the band rounds of the JFO polish
+# (small factorisations around the flipped nodes) where the one-rank run does
+bands() {
+  python3 - "$@" <<'PY'
+import json, sys
+counts = [json.load(open(f))["cavitation"]["band_factorizations"] for f in sys.argv[1:]]
+print(f"JFO band factorisations on 1, 2, ... ranks = {counts}")
+sys.exit(0 if counts[0] == 0 or min(counts[1:]) > 0 else 1)
+PY
+}
 # full film with the direct solver, CG + AMG and CG + geometric multigrid (8 x 64 cells refined
 # once: two levels, so that the 2-rank paths of the level transfer and of the finest level's
 # numbering run), and the mass-conserving JFO cavitation (a wavy seal at a low sealed pressure)
@@ -98,7 +108,10 @@ for solver in direct cg-amg cg-gmg auto jfo jfo-auto; do
   else
     compare "$work/np1-$solver" "$work/np2-$solver" "$solver"
   fi
-  if [ "$ranks" = "1 2 3" ]; then compare "$work/np1-$solver" "$work/np3-$solver" "$solver" 3; fi
+  if [ "$ranks" = "1 2 3" ]; then
+    compare "$work/np1-$solver" "$work/np3-$solver" "$solver" 3
+    bands "$work"/np{1,2,3}-$solver/summary.json
+  fi
 done
 # cg-gmg on 2 and 3 ranks against the direct solver on one (the full film of the cases above):
 # the V-cycle's level transfer, line smoother and finest level split among the ranks (3 ranks:

@@ -1,6 +1,7 @@
 #include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
@@ -242,10 +243,50 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   return LowRankSolve::solved;
 }
 
+namespace
+{
+/// Every rank's `mine`, on every rank, in rank order (MPI_Allgatherv: deal.II's all_gather packs
+/// and compresses, measurable at the band's 1e5 entries).
+template <typename T>
+std::vector<std::vector<T>> gather_on_every_rank(const MPI_Comm comm, const std::vector<T> &mine,
+                                                 const MPI_Datatype type)
+{
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+  std::vector<int> counts(n_ranks), offsets(n_ranks + 1, 0);
+  const int my_count = static_cast<int>(mine.size());
+  MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (unsigned int rank = 0; rank < n_ranks; ++rank)
+    offsets[rank + 1] = offsets[rank] + counts[rank];
+  std::vector<T> flat(offsets.back());
+  MPI_Allgatherv(mine.data(), my_count, type, flat.data(), counts.data(), offsets.data(), type,
+                 comm);
+  std::vector<std::vector<T>> by_rank(n_ranks);
+  for (unsigned int rank = 0; rank < n_ranks; ++rank)
+    by_rank[rank].assign(flat.begin() + offsets[rank], flat.begin() + offsets[rank + 1]);
+  return by_rank;
+}
+} // namespace
+
 std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                                 std::vector<bool> marked, const unsigned int layers)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+  const MPI_Comm comm = matrix.get_mpi_communicator();
+  const bool several_ranks = dealii::Utilities::MPI::n_mpi_processes(comm) > 1;
+  // On several ranks each rank marks the neighbours of its own rows; the union over the ranks
+  // (every row has one owner) is the layer of the whole graph. Bytes for MPI (vector<bool> packs
+  // bits): one logical-or reduction of n bytes per layer, 1 MB at 1e6 unknowns.
+  std::vector<unsigned char> bytes;
+  auto unite = [&]()
+  {
+    if (!several_ranks)
+      return;
+    bytes.assign(marked.begin(), marked.end());
+    MPI_Allreduce(MPI_IN_PLACE, bytes.data(), static_cast<int>(bytes.size()), MPI_UNSIGNED_CHAR,
+                  MPI_LOR, comm);
+    std::copy(bytes.begin(), bytes.end(), marked.begin());
+  };
+  unite(); // the seeds of every rank
   for (unsigned int layer = 0; layer < layers; ++layer)
   {
     std::vector<bool> grown(marked);
@@ -261,6 +302,7 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
         grown[A.ColMap().GID64(columns[k])] = true;
     }
     marked.swap(grown);
+    unite();
   }
   return marked;
 }
@@ -271,6 +313,8 @@ void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                      dealii::TrilinosWrappers::MPI::Vector &x)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+  const MPI_Comm comm = matrix.get_mpi_communicator();
+  // The subset's own numbering (the same on every rank: `subset` is)
   std::vector<long long> local(subset.size(), -1), global;
   for (std::size_t i = 0; i < subset.size(); ++i)
     if (subset[i])
@@ -279,39 +323,70 @@ void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
       global.push_back(i);
     }
   const unsigned int n = global.size();
-  dealii::DynamicSparsityPattern pattern(n, n);
-  std::vector<std::vector<std::pair<unsigned int, double>>> rows(n);
-  for (unsigned int r = 0; r < n; ++r)
+  // This rank's rows of A_SS and entries of b_S: row number, entry count, then (column, value)
+  // pairs, by the subset's numbering
+  std::vector<int> my_rows, my_counts, my_columns;
+  std::vector<double> my_values, my_b;
+  for (int row = 0; row < A.NumMyRows(); ++row)
   {
+    const long long r = local[A.RowMap().GID64(row)];
+    if (r < 0)
+      continue;
     int entries;
     double *values;
     int *columns;
-    A.ExtractMyRowView(A.RowMap().LID(static_cast<long long>(global[r])), entries, values, columns);
+    A.ExtractMyRowView(row, entries, values, columns);
+    int count = 0;
     for (int k = 0; k < entries; ++k)
     {
       const long long c = local[A.ColMap().GID64(columns[k])];
       if (c >= 0)
       {
-        pattern.add(r, c);
-        rows[r].emplace_back(c, values[k]);
+        my_columns.push_back(c);
+        my_values.push_back(values[k]);
+        ++count;
       }
     }
+    my_rows.push_back(r);
+    my_counts.push_back(count);
+    my_b.push_back(b.trilinos_vector()[0][b.trilinos_vector().Map().LID(A.RowMap().GID64(row))]);
   }
+  // On several ranks every rank gathers the whole subsystem and solves it (the ranks would wait
+  // for one solver otherwise): small, a band of a few graph layers around the flipped nodes.
+  const auto all_rows = gather_on_every_rank(comm, my_rows, MPI_INT);
+  const auto all_counts = gather_on_every_rank(comm, my_counts, MPI_INT);
+  const auto all_columns = gather_on_every_rank(comm, my_columns, MPI_INT);
+  const auto all_values = gather_on_every_rank(comm, my_values, MPI_DOUBLE);
+  const auto all_b = gather_on_every_rank(comm, my_b, MPI_DOUBLE);
+
+  dealii::DynamicSparsityPattern pattern(n, n);
+  for (std::size_t rank = 0; rank < all_rows.size(); ++rank)
+    for (std::size_t i = 0, k = 0; i < all_rows[rank].size(); ++i)
+      for (int e = 0; e < all_counts[rank][i]; ++e, ++k)
+        pattern.add(all_rows[rank][i], all_columns[rank][k]);
   const dealii::IndexSet all = dealii::complete_index_set(n);
   dealii::TrilinosWrappers::SparseMatrix sub;
   sub.reinit(all, all, pattern, MPI_COMM_SELF);
-  for (unsigned int r = 0; r < n; ++r)
-    for (const auto &[c, value] : rows[r])
-      sub.set(r, c, value);
-  sub.compress(dealii::VectorOperation::insert);
   dealii::TrilinosWrappers::MPI::Vector sub_b(all, MPI_COMM_SELF), sub_x(all, MPI_COMM_SELF);
-  for (unsigned int r = 0; r < n; ++r)
-    sub_b[r] = b[global[r]];
+  for (std::size_t rank = 0; rank < all_rows.size(); ++rank)
+    for (std::size_t i = 0, k = 0; i < all_rows[rank].size(); ++i)
+    {
+      for (int e = 0; e < all_counts[rank][i]; ++e, ++k)
+        sub.set(all_rows[rank][i], all_columns[rank][k], all_values[rank][k]);
+      sub_b[all_rows[rank][i]] = all_b[rank][i];
+    }
+  sub.compress(dealii::VectorOperation::insert);
   SparseDirect lu;
   lu.factorize(sub);
   lu.solve(sub_b, sub_x);
+  // every rank its own entries of x
+  const Epetra_BlockMap &x_map = x.trilinos_vector().Map();
   for (unsigned int r = 0; r < n; ++r)
-    x[global[r]] = sub_x[r];
+  {
+    const int lid = x_map.LID(static_cast<long long>(global[r]));
+    if (lid >= 0)
+      x.trilinos_vector()[0][lid] = sub_x[r];
+  }
 }
 
 } // namespace sealfe

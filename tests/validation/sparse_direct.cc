@@ -9,6 +9,7 @@
 #include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <gtest/gtest.h>
@@ -317,4 +318,81 @@ TEST(SparseDirect, LowRankUpdateRefusesASingularChange)
             LowRankSolve::ill_conditioned);
   EXPECT_LT(rcond, 1e-8);
   EXPECT_EQ(x[0], -7.0);
+}
+
+// The band solve of the JFO polish on a matrix split among the ranks (ctest
+// sparse_direct_band_on_{2,3}_ranks; on one rank the same check is trivially the serial path):
+// the band grown from seeds that different ranks own is the band grown in the whole graph, and
+// the gathered principal subsystem is the one a serial matrix gives. Its rows hold the same
+// entries (sorted by the subset's numbering either way), so its factorisation and solution are
+// the same operations: the entries of x are compared exactly, and x outside the band is untouched.
+TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm),
+                     rank = Utilities::MPI::this_mpi_process(comm);
+  const unsigned int m = 30, N = m * m;
+  const GridMatrix serial(m); // on MPI_COMM_SELF, whole on every rank
+  // contiguous row ranges, rank by rank
+  IndexSet owned(N);
+  owned.add_range(rank * N / n_ranks, (rank + 1) * N / n_ranks);
+  IndexSet relevant(owned);
+  DynamicSparsityPattern pattern(N, N, relevant);
+  for (const auto i : owned)
+    for (const auto &[j, value] : serial.row(i))
+      pattern.add(i, j);
+  TrilinosWrappers::SparseMatrix A;
+  A.reinit(owned, owned, pattern, comm);
+  for (const auto i : owned)
+    for (const auto &[j, value] : serial.row(i))
+      A.set(i, j, value);
+  A.compress(VectorOperation::insert);
+
+  // seeds on the first and the last rank's rows and across a rank boundary
+  std::vector<bool> seeds(N, false);
+  for (const unsigned int i : {5u * m + 3, N / 2, N / 2 - 1, N - 2 * m - 7})
+    if (owned.is_element(i)) // each rank marks only its own dofs, as the polish does
+      seeds[i] = true;
+  std::vector<bool> all_seeds(N, false);
+  for (const unsigned int i : {5u * m + 3, N / 2, N / 2 - 1, N - 2 * m - 7})
+    all_seeds[i] = true;
+  const std::vector<bool> band = grow_in_graph(A, seeds, 3);
+  const std::vector<bool> serial_band = grow_in_graph(serial.A, all_seeds, 3);
+  EXPECT_TRUE(band == serial_band);
+  EXPECT_GT(std::count(band.begin(), band.end(), true), 4 * 13); // the 4 seeds' diamonds
+
+  TrilinosWrappers::MPI::Vector b(owned, comm), x(owned, comm);
+  const IndexSet all = complete_index_set(N);
+  TrilinosWrappers::MPI::Vector b_serial(all, MPI_COMM_SELF), x_serial(all, MPI_COMM_SELF);
+  for (unsigned int i = 0; i < N; ++i)
+  {
+    const double value = std::cos(0.05 * i) + 0.1 * std::sin(1.3 * i);
+    b_serial[i] = value;
+    x_serial[i] = -7;
+    if (owned.is_element(i))
+    {
+      b[i] = value;
+      x[i] = -7;
+    }
+  }
+  b.compress(VectorOperation::insert);
+  x.compress(VectorOperation::insert);
+  solve_on_subset(A, band, b, x);
+  solve_on_subset(serial.A, serial_band, b_serial, x_serial);
+  for (const auto i : owned)
+    EXPECT_EQ(x[i], x_serial[i]) << i;
+  // and the band solve is the principal subsystem's: row i of A_SS x_S = b_S
+  for (const auto i : owned)
+  {
+    if (band[i])
+    {
+      double row = 0;
+      for (const auto &[j, value] : serial.row(i))
+        if (band[j])
+          row += value * x_serial[j];
+      EXPECT_NEAR(row, b_serial[i], 1e-13 * (std::abs(b_serial[i]) + 1)) << i;
+    }
+    else
+      EXPECT_EQ(x[i], -7.0) << i;
+  }
 }
