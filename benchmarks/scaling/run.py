@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Scaling benchmark of the sealfe FE Reynolds solver (issue 13, "Scale and speed").
 
-    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,gmg,ranks,jfo] [--sealfe build/sealfe]
+    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,gmg,ranks,jfo,jforanks] [--sealfe build/sealfe]
 
 Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps = 0.5), with
 `Error estimate = false`, `Write fields = false`. Runs
@@ -16,7 +16,8 @@ Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps 
      the time exponent fitted from 1e5 dofs up (the CG + AMG rows of this ladder on 1 and 2 ranks,
      study amg, are those of an earlier run and kept);
   3. jfo: JFO against full film on the same mesh (`Linear solver = auto`), degree 2, aspect 2
-     and prm/wavy_jfo.prm, recording the time ratio, Newton iterations and factorisations.
+     and prm/wavy_jfo.prm, recording the time ratio, Newton iterations and factorisations;
+  4. jforanks: JFO on the tilted seal, 1.3e5, 5.3e5 and 1.05e6 dofs, on 1 and 2 MPI ranks.
 Writes benchmarks/scaling/scaling.csv and scaling.png (process time against dofs; CG iterations
 against dofs per degree and aspect; CG iterations against the aspect). Each run once (the
 machine is shared: treat times as upper bounds; iteration counts are exact). --quick: up to
@@ -113,7 +114,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sealfe", default=os.path.join(REPO, "build", "sealfe"))
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--parts", default="amg,gmg,ranks,jfo")
+    ap.add_argument("--parts", default="amg,gmg,ranks,jfo,jforanks")
     ap.add_argument("--plot-only", action="store_true", help="redraw scaling.png from scaling.csv")
     a = ap.parse_args()
     parts = [] if a.plot_only else a.parts.split(",")
@@ -162,6 +163,22 @@ def main():
                          jfo_ratio_inprocess=(jfo.get("inprocess") or 0) / (full.get("inprocess") or 1))
                 print(r, flush=True)
                 rows.append(r)
+    if "jforanks" in parts:
+        # JFO on 1 and 2 ranks (issue 13: 2 ranks at least 1.6x faster at 1e6 dofs), tilted VG
+        for (nr, nt) in [(64, 128), (128, 256)] if a.quick else [(128, 256), (256, 512), (256, 1024)]:
+            for ranks in (1, 2):
+                r = run(a.sealfe, work, 2, nr, nt, "auto", "jfo", BASE, ranks)
+                r.update(study="jforanks", degree=2, nr=nr, nt=nt)
+                print(r, flush=True)
+                rows.append(r)
+        one = {r["nr"] * 10000 + r["nt"]: r for r in rows
+               if r.get("study") == "jforanks" and r.get("ranks") == 1 and "dofs" in r}
+        for r in rows:
+            if r.get("study") == "jforanks" and r.get("ranks") == 2 and "dofs" in r:
+                o = one.get(r["nr"] * 10000 + r["nt"])
+                if o:
+                    print(f"JFO {r['dofs']} dofs: 2 ranks {o['process_wall'] / r['process_wall']:.2f}x "
+                          f"faster, force_z rel. diff {abs(r['force_z'] / o['force_z'] - 1):.1e}")
     for ranks in (1, 2):
         sel = [r for r in rows if r.get("study") == "ranks" and r.get("ranks") == ranks]
         e = fit_exponent(sel)
@@ -218,6 +235,12 @@ def main():
                         ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
                                      "D" + style, color="k", ms=4,
                                      label=f"k=2, Nθ/Nr=16, auto, {ranks} rank" + ("s" if ranks > 1 else ""))
+                    sel = sorted([r for r in rows if r["study"] == "jforanks" and r.get("ranks") == ranks
+                                  and "dofs" in r], key=lambda r: r["dofs"])
+                    if sel:
+                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                     "P" + style, color="tab:purple", ms=5,
+                                     label=f"JFO tilted VG, auto, {ranks} rank" + ("s" if ranks > 1 else ""))
             # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
             ref = [r for r in rows if r["study"] == study and r.get("nr") == 128 and r.get("aspect") == 16
                    and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
@@ -241,7 +264,8 @@ def main():
                         ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
                                        label=f"k={k}, ~{target:.0e} dofs", base=2)
             ax[0].set_xlabel("dofs"); ax[0].set_ylabel("whole-process wall time [s]")
-            ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)", fontsize=9)
+            ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)"
+                            + ("; rank ladders of full film and JFO" if study == "gmg" else ""), fontsize=9)
             ax[0].legend(fontsize=6, ncol=2)
             ax[1].set_xlabel("dofs"); ax[1].set_ylabel("CG iterations (relative residual 1e-12)")
             ax[1].set_title(f"CG + {study.upper()}: iterations against size", fontsize=9)
