@@ -1,5 +1,7 @@
 #include <sealfe/film/jfo_krylov.h>
 #include <sealfe/film/jfo_solver.h>
+
+#include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/sparse_direct.h>
@@ -472,7 +474,16 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
         R -= cell_F[k];
         G.vmult_add(R, local_v);
         R *= -1.0; // residual vector holds -R
-        s.homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
+        // A cell without constrained dofs by position (CellSparsity, where the system matrix was
+        // built by it): the same additions in the same order as distribute_local_to_global,
+        // without its index translation; this is the path of every round on several ranks,
+        // where the global matrices below are not used
+        const bool by_position =
+            s.matrix_by_position && CellSparsity::unconstrained(s.homogeneous_constraints, dofs);
+        if (by_position)
+          CellSparsity::add(residual, R, dofs);
+        else
+          s.homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
         if (with_jacobian)
         {
           correction = 0;
@@ -511,7 +522,13 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
             }
           }
           R += correction;
-          if (select_columns)
+          if (by_position)
+          {
+            if (!select_columns)
+              CellSparsity::add(s.system_matrix, J, dofs);
+            CellSparsity::add(newton_rhs, R, dofs);
+          }
+          else if (select_columns)
             s.homogeneous_constraints.distribute_local_to_global(R, dofs, newton_rhs);
           else
             s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
