@@ -265,7 +265,8 @@ std::vector<T> gather_on_every_rank(const MPI_Comm comm, const std::vector<T> &m
     offsets[rank + 1] = offsets[rank] + counts[rank];
   }
   std::vector<T> all(offsets.back());
-  const MPI_Datatype type = dealii::Utilities::MPI::internal::mpi_type_id(mine.data());
+  const MPI_Datatype type =
+      dealii::Utilities::MPI::internal::MPIDataTypes::mpi_type_id(mine.data());
   ierr = MPI_Allgatherv(mine.data(), my_count, type, all.data(), counts.data(), offsets.data(),
                         type, comm);
   AssertThrowMPI(ierr);

@@ -106,8 +106,12 @@ TEST(SparseDirect, SubsetSolveSolvesThePrincipalSubsystemOnly)
     EXPECT_NEAR(row, b[i], 1e-13 * std::abs(b[i]) + 1e-14) << i;
   }
   for (unsigned int i = 0; i < n; ++i)
+  {
     if (!subset[i])
+    {
       EXPECT_EQ(x[i], -7.0) << i;
+    }
+  }
 
   // the whole set: the solution of A x = b
   solve_on_subset(A, std::vector<bool>(n, true), b, x);
