@@ -476,8 +476,9 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
         R *= -1.0; // residual vector holds -R
         // A cell without constrained dofs by position (CellSparsity, where the system matrix was
         // built by it): the same additions in the same order as distribute_local_to_global,
-        // without its index translation; this is the path of every round on several ranks,
-        // where the global matrices below are not used
+        // without its index translation (adding a zero to an owned entry leaves its bits). On
+        // several ranks every round takes this path (the global matrices are one-rank); on one
+        // rank the FB-Newton steps' Jacobians and the rounds on meshes with hanging nodes do
         const bool by_position =
             s.matrix_by_position && CellSparsity::unconstrained(s.homogeneous_constraints, dofs);
         if (by_position)

@@ -245,51 +245,59 @@ LowRankSolve solve_column_update(SparseDirect &lu,
 
 namespace
 {
-/// Every rank's `mine`, on every rank, in rank order (MPI_Allgatherv: deal.II's all_gather packs
-/// and compresses, measurable at the band's 1e5 entries).
+/// Every rank's `mine`, on every rank, one after the other in rank order (one MPI_Allgatherv;
+/// deal.II's all_gather packs and compresses, which is measurable at a band's 1e5 entries).
 template <typename T>
-std::vector<std::vector<T>> gather_on_every_rank(const MPI_Comm comm, const std::vector<T> &mine,
-                                                 const MPI_Datatype type)
+std::vector<T> gather_on_every_rank(const MPI_Comm comm, const std::vector<T> &mine)
 {
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
   std::vector<int> counts(n_ranks), offsets(n_ranks + 1, 0);
+  AssertThrow(mine.size() <= std::size_t(std::numeric_limits<int>::max()),
+              dealii::ExcMessage("band solve: more entries on one rank than MPI counts"));
   const int my_count = static_cast<int>(mine.size());
-  MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  int ierr = MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  AssertThrowMPI(ierr);
   for (unsigned int rank = 0; rank < n_ranks; ++rank)
+  {
+    AssertThrow(std::size_t(offsets[rank]) + counts[rank] <=
+                    std::size_t(std::numeric_limits<int>::max()),
+                dealii::ExcMessage("band solve: more entries than MPI counts"));
     offsets[rank + 1] = offsets[rank] + counts[rank];
-  std::vector<T> flat(offsets.back());
-  MPI_Allgatherv(mine.data(), my_count, type, flat.data(), counts.data(), offsets.data(), type,
-                 comm);
-  std::vector<std::vector<T>> by_rank(n_ranks);
-  for (unsigned int rank = 0; rank < n_ranks; ++rank)
-    by_rank[rank].assign(flat.begin() + offsets[rank], flat.begin() + offsets[rank + 1]);
-  return by_rank;
+  }
+  std::vector<T> all(offsets.back());
+  const MPI_Datatype type =
+      dealii::Utilities::MPI::internal::MPIDataTypes::mpi_type_id(mine.data());
+  ierr = MPI_Allgatherv(mine.data(), my_count, type, all.data(), counts.data(), offsets.data(),
+                        type, comm);
+  AssertThrowMPI(ierr);
+  return all;
 }
 } // namespace
 
 std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &matrix,
-                                std::vector<bool> marked, const unsigned int layers)
+                                const std::vector<bool> &seeds, const unsigned int layers)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
   const MPI_Comm comm = matrix.get_mpi_communicator();
   const bool several_ranks = dealii::Utilities::MPI::n_mpi_processes(comm) > 1;
   // On several ranks each rank marks the neighbours of its own rows; the union over the ranks
-  // (every row has one owner) is the layer of the whole graph. Bytes for MPI (vector<bool> packs
-  // bits): one logical-or reduction of n bytes per layer, 1 MB at 1e6 unknowns.
-  std::vector<unsigned char> bytes;
-  auto unite = [&]()
+  // (every row has one owner) is the layer of the whole graph. The union is taken of the seeds
+  // (a rank may mark a dof another rank owns) and after each layer: layers + 1 logical-or
+  // reductions of n bytes (1 MB at 1e6 unknowns).
+  std::vector<unsigned char> marked(seeds.begin(), seeds.end());
+  auto unite = [&](std::vector<unsigned char> &flags)
   {
-    if (!several_ranks)
-      return;
-    bytes.assign(marked.begin(), marked.end());
-    MPI_Allreduce(MPI_IN_PLACE, bytes.data(), static_cast<int>(bytes.size()), MPI_UNSIGNED_CHAR,
-                  MPI_LOR, comm);
-    std::copy(bytes.begin(), bytes.end(), marked.begin());
+    if (several_ranks)
+    {
+      const int ierr = MPI_Allreduce(MPI_IN_PLACE, flags.data(), static_cast<int>(flags.size()),
+                                     MPI_UNSIGNED_CHAR, MPI_LOR, comm);
+      AssertThrowMPI(ierr);
+    }
   };
-  unite(); // the seeds of every rank
+  unite(marked);
   for (unsigned int layer = 0; layer < layers; ++layer)
   {
-    std::vector<bool> grown(marked);
+    std::vector<unsigned char> grown(marked);
     for (int row = 0; row < A.NumMyRows(); ++row)
     {
       if (!marked[A.RowMap().GID64(row)])
@@ -299,12 +307,12 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
       int *columns;
       A.ExtractMyRowView(row, n, values, columns);
       for (int k = 0; k < n; ++k)
-        grown[A.ColMap().GID64(columns[k])] = true;
+        grown[A.ColMap().GID64(columns[k])] = 1;
     }
+    unite(grown);
     marked.swap(grown);
-    unite();
   }
-  return marked;
+  return std::vector<bool>(marked.begin(), marked.end());
 }
 
 void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
@@ -315,66 +323,69 @@ void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
   const MPI_Comm comm = matrix.get_mpi_communicator();
   // The subset's own numbering (the same on every rank: `subset` is)
-  std::vector<long long> local(subset.size(), -1), global;
+  std::vector<int> local(subset.size(), -1);
+  std::vector<long long> global;
   for (std::size_t i = 0; i < subset.size(); ++i)
     if (subset[i])
     {
-      local[i] = global.size();
+      AssertThrow(global.size() < std::size_t(std::numeric_limits<int>::max()),
+                  dealii::ExcMessage("band solve: the subset has too many dofs"));
+      local[i] = static_cast<int>(global.size());
       global.push_back(i);
     }
   const unsigned int n = global.size();
-  // This rank's rows of A_SS and entries of b_S: row number, entry count, then (column, value)
-  // pairs, by the subset's numbering
-  std::vector<int> my_rows, my_counts, my_columns;
-  std::vector<double> my_values, my_b;
+  // This rank's rows of A_SS and entries of b_S by the subset's numbering: integers (row, entry
+  // count, the entries' columns) and values (b_S entry, the entries' values), row after row
+  const Epetra_BlockMap &b_map = b.trilinos_vector().Map();
+  std::vector<int> my_integers;
+  std::vector<double> my_values;
   for (int row = 0; row < A.NumMyRows(); ++row)
   {
-    const long long r = local[A.RowMap().GID64(row)];
+    const long long gid = A.RowMap().GID64(row);
+    const int r = local[gid];
     if (r < 0)
       continue;
+    const int b_index = b_map.LID(gid);
+    AssertThrow(b_index >= 0, dealii::ExcMessage("band solve: b lacks an owned row"));
     int entries;
     double *values;
     int *columns;
     A.ExtractMyRowView(row, entries, values, columns);
-    int count = 0;
+    my_integers.push_back(r);
+    my_integers.push_back(0);
+    const std::size_t count = my_integers.size() - 1;
+    my_values.push_back(b.trilinos_vector()[0][b_index]);
     for (int k = 0; k < entries; ++k)
-    {
-      const long long c = local[A.ColMap().GID64(columns[k])];
-      if (c >= 0)
+      if (const int c = local[A.ColMap().GID64(columns[k])]; c >= 0)
       {
-        my_columns.push_back(c);
+        my_integers.push_back(c);
         my_values.push_back(values[k]);
-        ++count;
+        ++my_integers[count];
       }
-    }
-    my_rows.push_back(r);
-    my_counts.push_back(count);
-    my_b.push_back(b.trilinos_vector()[0][b.trilinos_vector().Map().LID(A.RowMap().GID64(row))]);
   }
   // On several ranks every rank gathers the whole subsystem and solves it (the ranks would wait
   // for one solver otherwise): small, a band of a few graph layers around the flipped nodes.
-  const auto all_rows = gather_on_every_rank(comm, my_rows, MPI_INT);
-  const auto all_counts = gather_on_every_rank(comm, my_counts, MPI_INT);
-  const auto all_columns = gather_on_every_rank(comm, my_columns, MPI_INT);
-  const auto all_values = gather_on_every_rank(comm, my_values, MPI_DOUBLE);
-  const auto all_b = gather_on_every_rank(comm, my_b, MPI_DOUBLE);
+  const std::vector<int> integers = gather_on_every_rank(comm, my_integers);
+  const std::vector<double> numbers = gather_on_every_rank(comm, my_values);
 
   dealii::DynamicSparsityPattern pattern(n, n);
-  for (std::size_t rank = 0; rank < all_rows.size(); ++rank)
-    for (std::size_t i = 0, k = 0; i < all_rows[rank].size(); ++i)
-      for (int e = 0; e < all_counts[rank][i]; ++e, ++k)
-        pattern.add(all_rows[rank][i], all_columns[rank][k]);
+  unsigned int rows = 0;
+  for (std::size_t i = 0; i < integers.size(); i += 2 + integers[i + 1], ++rows)
+    for (int e = 0; e < integers[i + 1]; ++e)
+      pattern.add(integers[i], integers[i + 2 + e]);
+  // every dof of the subset is some rank's row exactly once (else the ranks' subsets differ)
+  AssertThrow(rows == n, dealii::ExcMessage("band solve: the ranks' rows do not make the subset"));
   const dealii::IndexSet all = dealii::complete_index_set(n);
   dealii::TrilinosWrappers::SparseMatrix sub;
   sub.reinit(all, all, pattern, MPI_COMM_SELF);
   dealii::TrilinosWrappers::MPI::Vector sub_b(all, MPI_COMM_SELF), sub_x(all, MPI_COMM_SELF);
-  for (std::size_t rank = 0; rank < all_rows.size(); ++rank)
-    for (std::size_t i = 0, k = 0; i < all_rows[rank].size(); ++i)
-    {
-      for (int e = 0; e < all_counts[rank][i]; ++e, ++k)
-        sub.set(all_rows[rank][i], all_columns[rank][k], all_values[rank][k]);
-      sub_b[all_rows[rank][i]] = all_b[rank][i];
-    }
+  for (std::size_t i = 0, d = 0; i < integers.size(); i += 2 + integers[i + 1])
+  {
+    const int r = integers[i];
+    sub_b[r] = numbers[d++];
+    for (int e = 0; e < integers[i + 1]; ++e)
+      sub.set(r, integers[i + 2 + e], numbers[d++]);
+  }
   sub.compress(dealii::VectorOperation::insert);
   SparseDirect lu;
   lu.factorize(sub);
@@ -382,11 +393,8 @@ void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
   // every rank its own entries of x
   const Epetra_BlockMap &x_map = x.trilinos_vector().Map();
   for (unsigned int r = 0; r < n; ++r)
-  {
-    const int lid = x_map.LID(static_cast<long long>(global[r]));
-    if (lid >= 0)
+    if (const int lid = x_map.LID(global[r]); lid >= 0)
       x.trilinos_vector()[0][lid] = sub_x[r];
-  }
 }
 
 } // namespace sealfe

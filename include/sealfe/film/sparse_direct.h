@@ -78,13 +78,13 @@ LowRankSolve solve_column_update(SparseDirect &lu,
                                  const double *b, double *x, double min_rcond,
                                  double max_backward_error, double &rcond, double &backward_error);
 
-/// The dofs of `marked` (flags by global index, every dof) and their neighbours in the matrix
+/// The dofs of `seeds` (flags by global index, every dof) and their neighbours in the matrix
 /// graph, `layers` times. On several ranks collective: the seeds and each layer are the union
 /// over the ranks, so every rank returns the same flags.
 std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &matrix,
-                                std::vector<bool> marked, unsigned int layers);
+                                const std::vector<bool> &seeds, unsigned int layers);
 
-/// x_S = A_SS^-1 b_S on the dofs S with `subset` set (the others of x untouched): a KLU
+/// x_S = A_SS^-1 b_S on the dofs S with `subset` set (the others of x untouched): a sparse
 /// factorisation of the principal submatrix (KLU or MUMPS by its size). On several ranks
 /// collective (`subset` the same on every rank): every rank gathers A_SS and b_S, solves them
 /// and sets its own entries of x.
