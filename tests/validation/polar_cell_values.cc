@@ -171,8 +171,8 @@ TEST(PolarCellValues, SolveEqualsTheFEValuesAssembly)
 //    random walk of ~64 roundings, ~10 u q. The N residuals' round-off adds up as a random walk
 //    too (Higham & Mary 2019, probabilistic rounding error analysis): within lambda sqrt(N) 10 u
 //    q with lambda = 3 (the worst-case N 10 u q would not tell a wrong geometry from a right
-//    one). Measured 0.2-0.7 sqrt(N) u Q_h. With the loads' residual on FEValues where the
-//    system has the rows' values (the assembly moved without the loads), the two geometries'
+//    one). Measured 0.2-0.8 sqrt(N) u Q_h (both paths). With the loads' residual on FEValues where
+//    the system has the rows' values (the assembly moved without the loads), the two geometries'
 //    round-off
 //    (~100 u ro / h_r of every term) entered every boundary dof instead: 1.9e-13 Q_s on the
 //    wavy seal (15 sqrt(N) u Q_h, 4x its bound of 3.75) and 2.2e-13 Q_s on the tilted one (4.4,
