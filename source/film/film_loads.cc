@@ -233,11 +233,11 @@ std::vector<bool> LoadIntegrator::leakage_cells() const
 
 bool LoadIntegrator::polar_assembly() const
 {
-  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld) and the JFO
-  // cell matrices (JFOSolver::compute_cell_matrices) take the values of PolarCellValues on the
-  // built-in annulus; the reynolds system is assembled with FEValues (cell_film_matrices).
-  return solver.cavitation.model != Cavitation::reynolds &&
-         solver.mesh_parameters.mesh_file.empty() && solver.polar_rows;
+  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld), the JFO cell
+  // matrices (JFOSolver::compute_cell_matrices) and the reynolds system
+  // (ReynoldsCavitationSolver::assemble) take the values of PolarCellValues on the built-in
+  // annulus.
+  return solver.mesh_parameters.mesh_file.empty() && solver.polar_rows;
 }
 
 void LoadIntegrator::add_leakages(const std::vector<types::global_dof_index> &dofs,
