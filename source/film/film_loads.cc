@@ -233,11 +233,11 @@ std::vector<bool> LoadIntegrator::leakage_cells() const
 
 bool LoadIntegrator::polar_assembly() const
 {
-  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld) takes the
-  // values of PolarCellValues on the built-in annulus; the reynolds and jfo systems are
-  // assembled with FEValues (cell_film_matrices).
-  return !solver.cavitation.is_nonlinear() && solver.mesh_parameters.mesh_file.empty() &&
-         solver.polar_rows;
+  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld), the JFO cell
+  // matrices (JFOSolver::compute_cell_matrices) and the reynolds system
+  // (ReynoldsCavitationSolver::assemble) take the values of PolarCellValues on the built-in
+  // annulus.
+  return solver.mesh_parameters.mesh_file.empty() && solver.polar_rows;
 }
 
 void LoadIntegrator::add_leakages(const std::vector<types::global_dof_index> &dofs,
@@ -334,7 +334,9 @@ FilmLoads LoadIntegrator::affine_loads() const
       for (unsigned int q = 0; q < n_q; ++q)
       {
         x.x = turned ? polar->quadrature_point(q) : fe_values.quadrature_point(q);
-        x.f = s.local_film(x.x);
+        // the film the assembly took there (film_matrices: the row's radius and angle)
+        x.f = turned ? s.local_film(x.x, polar->radius(q), polar->angle(q), cos_psi, sin_psi)
+                     : s.local_film(x.x);
         x.JxW = turned ? polar->JxW(q) : fe_values.JxW(q);
         x.p = p_q[q];
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -510,7 +512,8 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   std::optional<PolarCellValues> polar;
   if (polar_assembly())
     polar.emplace(*s.mapping, *s.fe, quadrature);
-  std::vector<Vector<double>> cell_dp(n_k, Vector<double>(dofs_per_cell));
+  std::vector<Vector<double>> cell_dp(n_k, Vector<double>(dofs_per_cell)), cell_dv = cell_dp;
+  Vector<double> cell_v(dofs_per_cell);
 
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -600,17 +603,27 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
       }
       if (turned)
       {
-        // the same terms with the turned row values (no void fraction: not jfo)
+        // the same terms with the turned row values and the film the assembly took at them
+        // (film_matrices: the row's radius and angle); jfo: the void fraction and the cell's
+        // streamline parameter (x.tau, set above) as in its G
         cell->get_dof_values(s.locally_relevant_solution, cell_p);
+        if (jfo)
+          cell->get_dof_values(s.locally_relevant_void, cell_v);
         for (unsigned int k = 0; k < n_k; ++k)
+        {
           if (k < dp_nodal.size() && dp_nodal[k])
             cell->get_dof_values(*dp_nodal[k], cell_dp[k]);
           else
             cell_dp[k] = 0;
+          if (k < dv_nodal.size() && dv_nodal[k])
+            cell->get_dof_values(*dv_nodal[k], cell_dv[k]);
+          else
+            cell_dv[k] = 0;
+        }
         for (unsigned int q = 0; q < n_q; ++q)
         {
           x.x = polar->quadrature_point(q);
-          x.f = s.local_film(x.x);
+          x.f = s.local_film(x.x, polar->radius(q), polar->angle(q), cos_psi, sin_psi);
           x.JxW = polar->JxW(q);
           x.p = 0;
           x.v = 0;
@@ -621,6 +634,11 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
             shape_value[i] = polar->shape_value(i, q);
             x.p += cell_p(i) * shape_value[i];
             x.grad_p += cell_p(i) * shape_grad[i];
+            if (jfo)
+            {
+              x.v += cell_v(i) * shape_value[i];
+              x.grad_v += cell_v(i) * shape_grad[i];
+            }
           }
           for (unsigned int k = 0; k < n_k; ++k)
           {
@@ -635,6 +653,8 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
             {
               d.dp += cell_dp[k](i) * shape_value[i];
               d.grad_dp += cell_dp[k](i) * shape_grad[i];
+              d.dv += cell_dv[k](i) * shape_value[i];
+              d.grad_dv += cell_dv[k](i) * shape_grad[i];
             }
             add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
           }
@@ -739,30 +759,71 @@ std::vector<LoadIntegrator::VectorType> LoadIntegrator::linearized_right_hand_si
                             update_JxW_values);
   const unsigned int n_q = quadrature.size(), n = s.fe->n_dofs_per_cell();
   const unsigned int n_perturbations = perturbations.size();
-  std::vector<double> v(n_q);
-  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q);
+  std::vector<double> v(n_q), shape_value(n);
+  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q), shape_grad(n);
   std::vector<types::global_dof_index> dofs(n);
   std::vector<Vector<double>> cell_rhs(n_perturbations, Vector<double>(n));
+  // The values the Jacobian was assembled with (polar_assembly: the rows' on the built-in
+  // annulus), so that the linearised system is the derivative of one discrete system and its
+  // leakages balance like those of the solve.
+  std::optional<PolarCellValues> polar;
+  if (polar_assembly())
+    polar.emplace(*s.mapping, *s.fe, quadrature);
+  Vector<double> cell_p(n), cell_v(n);
 
   std::vector<VectorType> rhs(n_perturbations,
                               VectorType(s.locally_owned_dofs, s.mpi_communicator));
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      fe_values.reinit(cell);
-      fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
-      if (jfo)
+      const bool turned = polar && polar->reinit(cell);
+      if (turned)
       {
-        fe_values.get_function_values(s.locally_relevant_void, v);
-        fe_values.get_function_gradients(s.locally_relevant_void, grad_v);
+        // grad p, v and grad v from the cell's nodal values and the turned shape functions
+        cell->get_dof_values(s.locally_relevant_solution, cell_p);
+        if (jfo)
+          cell->get_dof_values(s.locally_relevant_void, cell_v);
+        for (unsigned int q = 0; q < n_q; ++q)
+        {
+          grad_p[q] = grad_v[q] = Tensor<1, 2>();
+          v[q] = 0;
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            grad_p[q] += cell_p(i) * polar->shape_grad(i, q);
+            if (jfo)
+            {
+              v[q] += cell_v(i) * polar->shape_value(i, q);
+              grad_v[q] += cell_v(i) * polar->shape_grad(i, q);
+            }
+          }
+        }
+      }
+      else
+      {
+        fe_values.reinit(cell);
+        fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+        if (jfo)
+        {
+          fe_values.get_function_values(s.locally_relevant_void, v);
+          fe_values.get_function_gradients(s.locally_relevant_void, grad_v);
+        }
       }
       const double tau = jfo ? s.streamline_tau(cell) : 0.0;
       for (auto &c : cell_rhs)
         c = 0;
       for (unsigned int q = 0; q < n_q; ++q)
       {
-        const ReynoldsSolver::LocalFilm f = s.local_film(fe_values.quadrature_point(q));
-        const double r = f.r, theta = f.theta, JxW = fe_values.JxW(q);
+        // the film the assembly took at the point (film_matrices: the row's radius and angle)
+        const ReynoldsSolver::LocalFilm f =
+            turned ? s.local_film(polar->quadrature_point(q), polar->radius(q), polar->angle(q),
+                                  cos_psi, sin_psi)
+                   : s.local_film(fe_values.quadrature_point(q));
+        const double r = f.r, theta = f.theta, JxW = turned ? polar->JxW(q) : fe_values.JxW(q);
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          shape_grad[i] = turned ? polar->shape_grad(i, q) : fe_values.shape_grad(i, q);
+          shape_value[i] = turned ? polar->shape_value(i, q) : fe_values.shape_value(i, q);
+        }
         const double liquid = jfo ? 1 - v[q] : 1.0;
         for (unsigned int k = 0; k < n_perturbations; ++k)
         {
@@ -783,11 +844,11 @@ std::vector<LoadIntegrator::VectorType> LoadIntegrator::linearized_right_hand_si
             streamline = -tau * (dh * (f.dc_dh * grad_v[q]) + v[q] * f.dc_div_factor * ddh_dtheta);
           }
           for (unsigned int i = 0; i < n; ++i)
-            cell_rhs[k](i) -= s.equation_scale *
-                              (dflux * fe_values.shape_grad(i, q) +
-                               liquid * f.dsqueeze_dht * dh_dt * fe_values.shape_value(i, q) +
-                               streamline * (f.u * fe_values.shape_grad(i, q))) *
-                              JxW;
+            cell_rhs[k](i) -=
+                s.equation_scale *
+                (dflux * shape_grad[i] + liquid * f.dsqueeze_dht * dh_dt * shape_value[i] +
+                 streamline * (f.u * shape_grad[i])) *
+                JxW;
         }
       }
       cell->get_dof_indices(dofs);

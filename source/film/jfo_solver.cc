@@ -3,6 +3,7 @@
 
 #include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/nested_transfer.h>
+#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/sparse_direct.h>
 
@@ -22,6 +23,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -95,6 +97,15 @@ void JFOSolver::compute_cell_matrices()
   FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
                         update_values | update_gradients | update_quadrature_points |
                             update_JxW_values);
+  // The built-in annulus: each cell's geometry (points, radius and angle, JxW, gradients) from
+  // its radial row, as in the full-film assembly (ReynoldsSolver::assemble_system), so no
+  // mapping, atan2 or square root per point; a cell that is not its row's first cell turned
+  // takes FEValues. The leakage residual of the loads takes the same values for the cells on the
+  // circles (LoadIntegrator::polar_assembly), so that the leakages of the solved field balance to
+  // round-off.
+  std::optional<PolarCellValues> polar;
+  if (s.mesh_parameters.mesh_file.empty() && s.polar_rows)
+    polar.emplace(*s.mapping, *s.fe, quadrature);
   cell_A.resize(s.triangulation.n_active_cells());
   cell_G.resize(s.triangulation.n_active_cells());
   cell_F.resize(s.triangulation.n_active_cells());
@@ -105,7 +116,10 @@ void JFOSolver::compute_cell_matrices()
       cell_A[k].reinit(n, n);
       cell_G[k].reinit(n, n);
       cell_F[k].reinit(n);
-      s.cell_film_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
+      if (polar && polar->reinit(cell))
+        s.film_matrices(*polar, cell, true, cell_A[k], cell_G[k], cell_F[k], {});
+      else
+        s.cell_film_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
     }
 }
 

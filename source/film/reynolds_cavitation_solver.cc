@@ -1,3 +1,4 @@
+#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -31,18 +33,26 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
   FullMatrix<double> A(n, n), G(n, n), J(n, n);
   Vector<double> F(n), R(n), local_u(n), local_p(n);
   std::vector<types::global_dof_index> dofs(n);
+  // The built-in annulus: each cell's geometry from its radial row, as in the full-film and JFO
+  // assemblies (PolarCellValues; a cell that is no rotation of its row's first cell takes
+  // FEValues); the loads' leakage residual takes the same values (LoadIntegrator::polar_assembly).
+  std::optional<PolarCellValues> polar;
+  if (s.mesh_parameters.mesh_file.empty() && s.polar_rows)
+    polar.emplace(*s.mapping, *s.fe, quadrature);
   if (with_jacobian)
     s.system_matrix = 0;
   rhs = 0;
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      fe_values.reinit(cell);
       cell->get_dof_indices(dofs);
       cell->get_dof_values(u, local_u);
       for (unsigned int j = 0; j < n; ++j)
         local_p(j) = s.cavitation.pressure + s.pressure_scale * local_u(j);
-      s.cell_film_matrices(fe_values, cell, false, A, G, F);
+      if (polar && polar->reinit(cell))
+        s.film_matrices(*polar, cell, false, A, G, F, {});
+      else
+        s.cell_film_matrices(fe_values, cell, false, A, G, F);
       A.vmult(R, local_p);
       R -= F;
       R *= -1.0; // rhs holds -R
