@@ -5,6 +5,9 @@
 #include <sealfe/film/annulus_mesh.h>
 
 #include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/multigrid/mg_constrained_dofs.h>
 
 #include <mpi.h>
 
@@ -27,6 +30,26 @@ struct GradedAnnulus
     m.grading_clearance = 1e-6;
     m.grading_coning = 1e-3;
     m.create(tria, ri, ro, 0);
+  }
+};
+
+/// That annulus with FE_Q(degree) dofs on the active mesh and on every level, and the level
+/// constraints of the multigrid: the dofs on both circles zero on every level.
+struct GradedAnnulusDoFs
+{
+  GradedAnnulus annulus;
+  dealii::FE_Q<2> fe;
+  dealii::DoFHandler<2> dof_handler;
+  dealii::MGConstrainedDoFs level_boundary;
+
+  GradedAnnulusDoFs(const MPI_Comm comm, const unsigned int degree)
+      : annulus(comm), fe(degree), dof_handler(annulus.tria)
+  {
+    dof_handler.distribute_dofs(fe);
+    dof_handler.distribute_mg_dofs();
+    level_boundary.initialize(dof_handler);
+    level_boundary.make_zero_boundary_constraints(
+        dof_handler, {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
   }
 };
 } // namespace sealfe::test

@@ -127,13 +127,11 @@ TEST(CellSparsity, SamePatternAndSumsAsTheGenericPathOnEveryLevel)
   const MPI_Comm comm = MPI_COMM_SELF;
   for (const unsigned int degree : {1u, 2u, 3u})
   {
-    test::GradedAnnulus annulus(comm);
-    auto &tria = annulus.tria;
+    test::GradedAnnulusDoFs annulus(comm, degree);
+    const auto &tria = annulus.annulus.tria;
     ASSERT_EQ(tria.n_global_levels(), 3u);
-    const FE_Q<2> fe(degree);
-    DoFHandler<2> dof_handler(tria);
-    dof_handler.distribute_dofs(fe);
-    dof_handler.distribute_mg_dofs();
+    const FE_Q<2> &fe = annulus.fe;
+    const DoFHandler<2> &dof_handler = annulus.dof_handler;
     const unsigned int n = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);
     FullMatrix<double> cell_matrix(n, n);
@@ -188,10 +186,7 @@ TEST(CellSparsity, SamePatternAndSumsAsTheGenericPathOnEveryLevel)
     EXPECT_EQ(rhs_differences, 0u) << "degree " << degree;
 
     // every level with its boundary dofs constrained (the multigrid's level matrices)
-    MGConstrainedDoFs mg_constrained;
-    mg_constrained.initialize(dof_handler);
-    mg_constrained.make_zero_boundary_constraints(
-        dof_handler, {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
+    const MGConstrainedDoFs &mg_constrained = annulus.level_boundary;
     for (unsigned int l = 0; l < tria.n_global_levels(); ++l)
     {
       const IndexSet &level_owned = dof_handler.locally_owned_mg_dofs(l);
@@ -243,13 +238,12 @@ TEST(CellSparsity, SamePatternStorageAndSumsAsTheGenericPathOnSeveralRanks)
                      rank = Utilities::MPI::this_mpi_process(comm);
   for (const unsigned int degree : {1u, 2u, 3u})
   {
-    test::GradedAnnulus annulus(comm); // 32 coarse cells (trees) to split among the ranks
-    auto &tria = annulus.tria;
+    test::GradedAnnulusDoFs annulus(comm,
+                                    degree); // 32 coarse cells (trees) to split among the ranks
+    const auto &tria = annulus.annulus.tria;
     ASSERT_EQ(tria.n_global_levels(), 3u);
-    const FE_Q<2> fe(degree);
-    DoFHandler<2> dof_handler(tria);
-    dof_handler.distribute_dofs(fe);
-    dof_handler.distribute_mg_dofs();
+    const FE_Q<2> &fe = annulus.fe;
+    const DoFHandler<2> &dof_handler = annulus.dof_handler;
     const unsigned int n = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);
     FullMatrix<double> cell_matrix(n, n);
@@ -313,10 +307,7 @@ TEST(CellSparsity, SamePatternStorageAndSumsAsTheGenericPathOnSeveralRanks)
     EXPECT_EQ(rhs_differences, 0u) << "degree " << degree << ", rank " << rank;
 
     // every level with its boundary dofs constrained: the generic path of FilmMultigrid
-    MGConstrainedDoFs mg_constrained;
-    mg_constrained.initialize(dof_handler);
-    mg_constrained.make_zero_boundary_constraints(
-        dof_handler, {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
+    const MGConstrainedDoFs &mg_constrained = annulus.level_boundary;
     for (unsigned int l = 0; l < tria.n_global_levels(); ++l)
     {
       const IndexSet &level_owned = dof_handler.locally_owned_mg_dofs(l);

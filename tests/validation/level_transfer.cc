@@ -76,17 +76,12 @@ TEST_P(LevelTransferTest, EqualsMGTransferPrebuiltOnEveryLevel)
 {
   const unsigned int degree = GetParam();
   const MPI_Comm comm = MPI_COMM_WORLD;
-  test::GradedAnnulus annulus(comm);
-  auto &tria = annulus.tria;
+  test::GradedAnnulusDoFs annulus(comm, degree);
+  const auto &tria = annulus.annulus.tria;
   ASSERT_EQ(tria.n_global_levels(), 3u);
-  const FE_Q<2> fe(degree);
-  DoFHandler<2> dof_handler(tria);
-  dof_handler.distribute_dofs(fe);
-  dof_handler.distribute_mg_dofs();
-  MGConstrainedDoFs constrained;
-  constrained.initialize(dof_handler);
-  constrained.make_zero_boundary_constraints(
-      dof_handler, {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
+  const FE_Q<2> &fe = annulus.fe;
+  const DoFHandler<2> &dof_handler = annulus.dof_handler;
+  const MGConstrainedDoFs &constrained = annulus.level_boundary;
   MGTransferPrebuilt<VectorType> reference(constrained);
   reference.build(dof_handler);
 

@@ -34,6 +34,43 @@
 using namespace sealfe;
 using namespace dealii;
 
+namespace
+{
+/// The loads of one cavitation model on the built-in 8 x 128 annulus (degree 2), assembled from
+/// the rows' values (`turned`) and with FEValues (`plain`), and the smallest and largest radial
+/// cell width of that mesh [m] and its number of dofs.
+struct BothPaths
+{
+  FilmLoads turned, plain;
+  double h_r = 0, h_r_max = 0, dofs = 0;
+};
+
+BothPaths loads_on_both_paths(const Cavitation model, const FilmThickness &film,
+                              const OperatingConditions &conditions)
+{
+  ReynoldsSolver turned(MPI_COMM_WORLD), plain(MPI_COMM_WORLD);
+  for (ReynoldsSolver *s : {&turned, &plain})
+  {
+    s->cavitation.model = model;
+    s->mesh().radial_cells = 8;
+    s->mesh().circumferential_cells = 128;
+    s->estimate_error = false;
+  }
+  plain.polar_rows = false;
+  BothPaths result{turned.run(film, conditions), plain.run(film, conditions)};
+  const std::vector<double> radii =
+      turned.mesh().radial_nodes(8, film.inner_radius, film.outer_radius);
+  result.dofs = turned.n_dofs();
+  result.h_r = film.outer_radius;
+  for (unsigned int k = 0; k + 1 < radii.size(); ++k)
+  {
+    result.h_r = std::min(result.h_r, radii[k + 1] - radii[k]);
+    result.h_r_max = std::max(result.h_r_max, radii[k + 1] - radii[k]);
+  }
+  return result;
+}
+} // namespace
+
 TEST(PolarCellValues, EqualFEValuesOnEveryCellOfEveryLevel)
 {
   const double ri = test::GradedAnnulus::ri, ro = test::GradedAnnulus::ro;
@@ -203,31 +240,16 @@ TEST(PolarCellValues, JfoLeakagesBalanceToRoundOffAndLoadsEqualTheFEValuesPath)
       film.tilt = 0.5 * film.clearance / film.outer_radius;
       conditions = OperatingConditions();
     }
-    const unsigned int radial_cells = 8;
-    ReynoldsSolver turned(MPI_COMM_WORLD), plain(MPI_COMM_WORLD);
-    for (ReynoldsSolver *s : {&turned, &plain})
-    {
-      s->cavitation.model = Cavitation::jfo;
-      s->mesh().radial_cells = radial_cells;
-      s->mesh().circumferential_cells = 128;
-      s->estimate_error = false;
-    }
-    plain.polar_rows = false;
-    const FilmLoads a = turned.run(film, conditions), b = plain.run(film, conditions);
+    const BothPaths paths = loads_on_both_paths(Cavitation::jfo, film, conditions);
+    const FilmLoads &a = paths.turned, &b = paths.plain;
     ASSERT_GT(a.cavitated_fraction, 0.05); // the case does cavitate
 
     const double ri = film.inner_radius, ro = film.outer_radius;
-    const std::vector<double> radii = turned.mesh().radial_nodes(radial_cells, ri, ro);
-    double h_r = ro, h_r_max = 0;
-    for (unsigned int k = 0; k + 1 < radii.size(); ++k)
-    {
-      h_r = std::min(h_r, radii[k + 1] - radii[k]);
-      h_r_max = std::max(h_r_max, radii[k + 1] - radii[k]);
-    }
+    const double h_r = paths.h_r, h_r_max = paths.h_r_max;
     const double Q_s = mass_balance_flow_scale(film, conditions, a);
     const double Q_h = Q_s * film.maximum().value / film.clearance;
     const double q = Q_h * h_r_max / (ro - ri);
-    const double N = turned.n_dofs(), bound = 3 * std::sqrt(N) * 10 * u * q;
+    const double N = paths.dofs, bound = 3 * std::sqrt(N) * 10 * u * q;
     for (const FilmLoads *l : {&a, &b})
     {
       const double imbalance = std::abs(l->leakage_inner + l->leakage_outer + l->squeeze_flow);
@@ -267,22 +289,10 @@ TEST(PolarCellValues, ReynoldsCavitationLoadsEqualTheFEValuesPath)
   FilmThickness film; // Varney & Green's seal, tilted as in benchmarks/reynolds_speed/case.prm
   film.tilt = 0.5 * film.clearance / film.outer_radius;
   const OperatingConditions conditions;
-  ReynoldsSolver turned(MPI_COMM_WORLD), plain(MPI_COMM_WORLD);
-  for (ReynoldsSolver *s : {&turned, &plain})
-  {
-    s->cavitation.model = Cavitation::reynolds;
-    s->mesh().radial_cells = 8;
-    s->mesh().circumferential_cells = 128;
-    s->estimate_error = false;
-  }
-  plain.polar_rows = false;
-  const FilmLoads a = turned.run(film, conditions), b = plain.run(film, conditions);
+  const BothPaths paths = loads_on_both_paths(Cavitation::reynolds, film, conditions);
+  const FilmLoads &a = paths.turned, &b = paths.plain;
   ASSERT_GT(a.cavitated_fraction, 0.01); // the case does cavitate
-  const double ri = film.inner_radius, ro = film.outer_radius;
-  const std::vector<double> radii = turned.mesh().radial_nodes(8, ri, ro);
-  double h_r = ro;
-  for (unsigned int k = 0; k + 1 < radii.size(); ++k)
-    h_r = std::min(h_r, radii[k + 1] - radii[k]);
+  const double ro = film.outer_radius, h_r = paths.h_r;
   const double tol = 10 * 1000 * u * ro / h_r;
   const double F = std::abs(a.force_z), Q_s = mass_balance_flow_scale(film, conditions, a);
   std::cout << "force_z " << (a.force_z - b.force_z) / F << ", moment_x "
