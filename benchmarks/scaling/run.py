@@ -227,20 +227,18 @@ def main():
                             ax[1].semilogx([r["dofs"] for r in sel], [r["cg_iterations"] for r in sel],
                                            markers[k] + "-", color=colours[aspect], label=lab, ms=4)
             if study == "gmg":
-                # the rank ladder (k = 2, aspect 16, `auto`: direct below 1.5e5 dofs) on 1 and 2 ranks
+                # the rank ladders on 1 and 2 ranks: full film (k = 2, aspect 16, `auto`: direct
+                # below 1.5e5 dofs) and JFO (tilted VG, `auto`)
                 for ranks, style in ((1, "-"), (2, "--")):
-                    sel = sorted([r for r in rows if r["study"] == "ranks" and r.get("ranks") == ranks
-                                  and "dofs" in r], key=lambda r: r["dofs"])
-                    if sel:
-                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
-                                     "D" + style, color="k", ms=4,
-                                     label=f"k=2, Nθ/Nr=16, auto, {ranks} rank" + ("s" if ranks > 1 else ""))
-                    sel = sorted([r for r in rows if r["study"] == "jforanks" and r.get("ranks") == ranks
-                                  and "dofs" in r], key=lambda r: r["dofs"])
-                    if sel:
-                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
-                                     "P" + style, color="tab:purple", ms=5,
-                                     label=f"JFO tilted VG, auto, {ranks} rank" + ("s" if ranks > 1 else ""))
+                    for ladder, marker, colour, name in (
+                            ("ranks", "D", "k", "k=2, Nθ/Nr=16, auto"),
+                            ("jforanks", "P", "tab:purple", "JFO tilted VG, auto")):
+                        sel = sorted([r for r in rows if r["study"] == ladder and r.get("ranks") == ranks
+                                      and "dofs" in r], key=lambda r: r["dofs"])
+                        if sel:
+                            ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                         marker + style, color=colour, ms=4,
+                                         label=f"{name}, {ranks} rank" + ("s" if ranks > 1 else ""))
             # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
             ref = [r for r in rows if r["study"] == study and r.get("nr") == 128 and r.get("aspect") == 16
                    and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
