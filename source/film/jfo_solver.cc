@@ -26,6 +26,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace sealfe
 {
@@ -138,13 +139,54 @@ bool JFOSolver::prepare_global_matrices()
     return false; // tests: the cell-by-cell path throughout
   TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
   global_matrices = -1;
-  if (Utilities::MPI::n_mpi_processes(s.mpi_communicator) != 1)
-    return false;
+  bool dirichlet_only = true;
   for (const auto i : s.locally_owned_dofs)
     if (s.homogeneous_constraints.is_constrained(i) &&
         (!s.homogeneous_constraints.get_constraint_entries(i)->empty() ||
          s.homogeneous_constraints.is_inhomogeneously_constrained(i)))
-      return false;
+      dirichlet_only = false;
+  // every rank takes the same path (the several-rank one is collective)
+  if (Utilities::MPI::min(dirichlet_only ? 1 : 0, s.mpi_communicator) == 0)
+    return false;
+  if (Utilities::MPI::n_mpi_processes(s.mpi_communicator) != 1)
+  {
+    // Several ranks: a cell at the partition boundary adds to rows another rank owns, which
+    // reach it in compress(). P A and G are therefore assembled into the system matrix itself,
+    // once each, with the per-round assembly's additions in its order (by position where
+    // CellSparsity built the matrix, else distribute_local_to_global, then compress's sums), and
+    // their values copied out in its storage order: a round's column selection is then bitwise
+    // the matrix the round's cell loop would assemble.
+    const unsigned int n = s.fe->n_dofs_per_cell();
+    FullMatrix<double> J(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (auto [cell_matrices, scale, values] :
+         {std::tuple{&cell_A, s.pressure_scale, &global_PA}, std::tuple{&cell_G, 1.0, &global_G}})
+    {
+      s.system_matrix = 0;
+      for (const auto &cell : s.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+        {
+          const FullMatrix<double> &C = (*cell_matrices)[cell->active_cell_index()];
+          // the products of the cell-by-cell assembly (P * A(i, j); G(i, j), times 1 exactly)
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < n; ++j)
+              J(i, j) = scale * C(i, j);
+          cell->get_dof_indices(dofs);
+          if (s.matrix_by_position && CellSparsity::unconstrained(s.homogeneous_constraints, dofs))
+            CellSparsity::add(s.system_matrix, J, dofs);
+          else
+            s.homogeneous_constraints.distribute_local_to_global(J, dofs, s.system_matrix);
+        }
+      s.system_matrix.compress(VectorOperation::add);
+      values->clear();
+      values->reserve(s.system_matrix.trilinos_matrix().NumMyNonzeros());
+      for_each_row(s.system_matrix.trilinos_matrix(),
+                   [&](int, const int entries, const double *row_values, const int *, std::size_t)
+                   { values->insert(values->end(), row_values, row_values + entries); });
+    }
+    global_matrices = 1;
+    return true;
+  }
   // The values are summed straight into flat arrays in the system matrix's storage order, both
   // matrices in one pass over the cells: the same additions in the same order as
   // AffineConstraints::distribute_local_to_global into the Trilinos matrix (each entry gets one
@@ -339,15 +381,11 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
   // term of the unknown each node keeps: F - A p_cav - sum_j (a_j >= v_j ? P A_:j a_j : G_:j v_j)
   // (the cell-by-cell assemble() below, summed in another order). The constrained dofs' terms
   // are constant during a solve (their a and v never change) and sit in constant_residual and
-  // constant_rhs, computed once by a loop over the cells.
+  // constant_rhs, computed once by a loop over the cells. Rows by local index (this rank's
+  // owned dofs in order), a and v by the matrix's local column index.
   if (global_matrices != 1 || assemble_by_cells)
     return false;
   const std::size_t n = s.dof_handler.n_dofs();
-  const double *pa = plain_values(a, n), *pv = plain_values(v, n);
-  double *res = const_cast<double *>(plain_values(residual, n));
-  double *rhs = const_cast<double *>(plain_values(newton_rhs, n));
-  if (!pa || !pv || !res || !rhs)
-    return false;
   const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
   if (row_gid.empty())
   {
@@ -357,27 +395,57 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
     column_gid.resize(M.NumMyCols());
     for (int c = 0; c < M.NumMyCols(); ++c)
       column_gid[c] = M.ColMap().GID64(c);
+    // by global index; the dofs of this rank's cells (on one rank every dof)
     constrained.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i)
+    for (const auto i : s.locally_relevant_dofs)
       constrained[i] = s.homogeneous_constraints.is_constrained(i);
   }
-  bool same_constrained_values = !constant_residual.empty();
-  for (std::size_t i = 0, k = 0; i < n && same_constrained_values; ++i)
+  // the owned vectors' entry k is the k-th owned dof, the matrix's row k the same dof
+  double *res = owned_values(residual), *rhs = owned_values(newton_rhs);
+  const IndexSet &owned = s.locally_owned_dofs;
+  bool layout =
+      static_cast<std::size_t>(M.NumMyRows()) == owned.n_elements() &&
+      (M.NumMyRows() == 0 ||
+       (row_gid.front() == static_cast<long long>(owned.nth_index_in_set(0)) &&
+        row_gid.back() == static_cast<long long>(owned.nth_index_in_set(owned.n_elements() - 1))));
+  // a and v at the columns: on one rank the plain layout (column c is dof column_gid[c]), on
+  // several the ghosted vectors' entries (every column of an owned row is a dof of a cell around
+  // it, owned or ghost, so locally relevant)
+  std::vector<double> column_a(M.NumMyCols()), column_v(M.NumMyCols());
+  for (auto [x, values] : {std::pair{&a, &column_a}, std::pair{&v, &column_v}})
+    if (const double *plain = plain_values(*x, n))
+      for (std::size_t c = 0; c < values->size(); ++c)
+        (*values)[c] = plain[column_gid[c]];
+    else if (!x->has_ghost_elements())
+      layout = false;
+    else
+    {
+      const Epetra_MultiVector &e = x->trilinos_vector();
+      for (std::size_t c = 0; c < values->size() && layout; ++c)
+      {
+        const int local = e.Map().LID(static_cast<long long>(column_gid[c]));
+        layout = local >= 0;
+        (*values)[c] = layout ? e[0][local] : 0.0;
+      }
+    }
+  // every rank takes the same path (the constant terms' sums over the ranks are collective)
+  if (Utilities::MPI::min(layout ? 1 : 0, s.mpi_communicator) == 0)
+    return false;
+  // the constrained dofs of this rank's cells: the same values as when the constant terms were
+  // computed? (every rank recomputes together: the sums over the ranks are collective)
+  std::vector<double> now_a, now_v;
+  for (const auto i : s.locally_relevant_dofs)
     if (constrained[i])
     {
-      same_constrained_values = constrained_a[k] == pa[i] && constrained_v[k] == pv[i];
-      ++k;
+      now_a.push_back(a[i]);
+      now_v.push_back(v[i]);
     }
-  if (!same_constrained_values)
+  const bool same_here =
+      !constant_residual.empty() && now_a == constrained_a && now_v == constrained_v;
+  if (Utilities::MPI::min(same_here ? 1 : 0, s.mpi_communicator) == 0)
   {
-    constrained_a.clear();
-    constrained_v.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      if (constrained[i])
-      {
-        constrained_a.push_back(pa[i]);
-        constrained_v.push_back(pv[i]);
-      }
+    constrained_a = std::move(now_a);
+    constrained_v = std::move(now_v);
     const unsigned int dofs_per_cell = s.fe->n_dofs_per_cell();
     const double P = s.pressure_scale;
     Vector<double> r(dofs_per_cell), b(dofs_per_cell);
@@ -385,65 +453,65 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
     VectorType c_res(s.locally_owned_dofs, s.mpi_communicator),
         c_rhs(s.locally_owned_dofs, s.mpi_communicator);
     for (const auto &cell : s.dof_handler.active_cell_iterators())
-    {
-      const auto k = cell->active_cell_index();
-      const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
-      cell->get_dof_indices(dofs);
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      if (cell->is_locally_owned())
       {
-        r(i) = b(i) = cell_F[k](i);
-        for (unsigned int j = 0; j < dofs_per_cell; ++j)
+        const auto k = cell->active_cell_index();
+        const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
-          const auto J = dofs[j];
-          const double a_j = constrained[J] ? pa[J] : 0.0, v_j = constrained[J] ? pv[J] : 0.0;
-          r(i) -= A(i, j) * (s.cavitation.pressure + P * a_j) + G(i, j) * v_j;
-          b(i) -=
-              A(i, j) * s.cavitation.pressure + (a_j >= v_j ? P * A(i, j) * a_j : G(i, j) * v_j);
+          r(i) = b(i) = cell_F[k](i);
+          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+          {
+            const auto J = dofs[j];
+            const double a_j = constrained[J] ? a[J] : 0.0, v_j = constrained[J] ? v[J] : 0.0;
+            r(i) -= A(i, j) * (s.cavitation.pressure + P * a_j) + G(i, j) * v_j;
+            b(i) -=
+                A(i, j) * s.cavitation.pressure + (a_j >= v_j ? P * A(i, j) * a_j : G(i, j) * v_j);
+          }
         }
+        s.homogeneous_constraints.distribute_local_to_global(r, dofs, c_res);
+        s.homogeneous_constraints.distribute_local_to_global(b, dofs, c_rhs);
       }
-      s.homogeneous_constraints.distribute_local_to_global(r, dofs, c_res);
-      s.homogeneous_constraints.distribute_local_to_global(b, dofs, c_rhs);
-    }
     c_res.compress(VectorOperation::add);
     c_rhs.compress(VectorOperation::add);
-    const double *cr = plain_values(c_res, n), *cb = plain_values(c_rhs, n);
-    constant_residual.assign(cr, cr + n);
-    constant_rhs.assign(cb, cb + n);
+    const double *cr = owned_values(c_res), *cb = owned_values(c_rhs);
+    constant_residual.assign(cr, cr + M.NumMyRows());
+    constant_rhs.assign(cb, cb + M.NumMyRows());
   }
   std::vector<char> keep_pressure;
   if (with_rhs)
   {
-    keep_pressure.resize(n);
-    for (std::size_t j = 0; j < n; ++j)
-      keep_pressure[j] = pa[j] >= pv[j];
+    keep_pressure.resize(column_a.size());
+    for (std::size_t c = 0; c < column_a.size(); ++c)
+      keep_pressure[c] = column_a[c] >= column_v[c];
   }
   for_each_row(M,
                [&](const int row, const int entries, const double *, const int *columns,
                    const std::size_t first)
                {
-                 const auto i = row_gid[row];
-                 if (constrained[i])
+                 if (constrained[row_gid[row]])
                  {
-                   res[i] = 0;
+                   res[row] = 0;
                    if (with_rhs)
-                     rhs[i] = 0;
+                     rhs[row] = 0;
                    return;
                  }
                  // constrained columns hold zeros in the condensed P A and G (their terms are
                  // constant)
-                 double r = constant_residual[i], b = constant_rhs[i];
+                 double r = constant_residual[row], b = constant_rhs[row];
                  for (int e = 0; e < entries; ++e)
                  {
-                   const auto j = column_gid[columns[e]];
-                   const double pa_e = global_PA[first + e] * pa[j],
-                                g_e = global_G[first + e] * pv[j];
+                   const int c = columns[e];
+                   const double pa_e = global_PA[first + e] * column_a[c],
+                                g_e = global_G[first + e] * column_v[c];
                    r -= pa_e + g_e;
                    if (with_rhs)
-                     b -= keep_pressure[j] ? pa_e : g_e;
+                     b -= keep_pressure[c] ? pa_e : g_e;
                  }
-                 res[i] = r;
+                 res[row] = r;
                  if (with_rhs)
-                   rhs[i] = b;
+                   rhs[row] = b;
                });
   return true;
 }
