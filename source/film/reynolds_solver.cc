@@ -245,14 +245,8 @@ void ReynoldsSolver::assemble_system()
           affine_loads.add_cell(relevant_index);
         // a cell without constrained dofs: the same sums as distribute_local_to_global, the
         // owned rows by position
-        if (matrix_by_position && CellSparsity::unconstrained(constraints, local_dof_indices))
-        {
-          CellSparsity::add(system_matrix, cell_matrix, local_dof_indices);
-          CellSparsity::add(system_rhs, cell_rhs, local_dof_indices);
-        }
-        else
-          constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
-                                                 system_matrix, system_rhs);
+        CellSparsity::distribute(constraints, matrix_by_position, cell_matrix, cell_rhs,
+                                 local_dof_indices, system_matrix, system_rhs);
       }
   }
   catch (...)
