@@ -237,7 +237,7 @@ bool LoadIntegrator::polar_assembly() const
   // matrices (JFOSolver::compute_cell_matrices) and the reynolds system
   // (ReynoldsCavitationSolver::assemble) take the values of PolarCellValues on the built-in
   // annulus.
-  return solver.mesh_parameters.mesh_file.empty() && solver.polar_rows;
+  return solver.assembles_on_polar_rows();
 }
 
 void LoadIntegrator::add_leakages(const std::vector<types::global_dof_index> &dofs,

@@ -104,7 +104,7 @@ void JFOSolver::compute_cell_matrices()
   // circles (LoadIntegrator::polar_assembly), so that the leakages of the solved field balance to
   // round-off.
   std::optional<PolarCellValues> polar;
-  if (s.mesh_parameters.mesh_file.empty() && s.polar_rows)
+  if (s.assembles_on_polar_rows())
     polar.emplace(*s.mapping, *s.fe, quadrature);
   cell_A.resize(s.triangulation.n_active_cells());
   cell_G.resize(s.triangulation.n_active_cells());
@@ -116,10 +116,7 @@ void JFOSolver::compute_cell_matrices()
       cell_A[k].reinit(n, n);
       cell_G[k].reinit(n, n);
       cell_F[k].reinit(n);
-      if (polar && polar->reinit(cell))
-        s.film_matrices(*polar, cell, true, cell_A[k], cell_G[k], cell_F[k], {});
-      else
-        s.cell_film_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
+      s.cell_film_matrices(polar, fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
     }
 }
 
