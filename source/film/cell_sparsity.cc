@@ -481,4 +481,42 @@ void CellSparsity::add(TrilinosWrappers::MPI::Vector &vector, const Vector<doubl
       vector.add(1, &dofs[i], &value); // kept until compress(); zeros left out, as by deal.II
 }
 
+void CellSparsity::distribute(const AffineConstraints<double> &constraints, const bool by_position,
+                              const FullMatrix<double> &cell_matrix,
+                              const Vector<double> &cell_vector,
+                              const std::vector<types::global_dof_index> &dofs,
+                              TrilinosWrappers::SparseMatrix &matrix,
+                              TrilinosWrappers::MPI::Vector &vector)
+{
+  if (by_position && unconstrained(constraints, dofs))
+  {
+    add(matrix, cell_matrix, dofs);
+    add(vector, cell_vector, dofs);
+  }
+  else
+    constraints.distribute_local_to_global(cell_matrix, cell_vector, dofs, matrix, vector);
+}
+
+void CellSparsity::distribute(const AffineConstraints<double> &constraints, const bool by_position,
+                              const FullMatrix<double> &cell_matrix,
+                              const std::vector<types::global_dof_index> &dofs,
+                              TrilinosWrappers::SparseMatrix &matrix)
+{
+  if (by_position && unconstrained(constraints, dofs))
+    add(matrix, cell_matrix, dofs);
+  else
+    constraints.distribute_local_to_global(cell_matrix, dofs, matrix);
+}
+
+void CellSparsity::distribute(const AffineConstraints<double> &constraints, const bool by_position,
+                              const Vector<double> &cell_vector,
+                              const std::vector<types::global_dof_index> &dofs,
+                              TrilinosWrappers::MPI::Vector &vector)
+{
+  if (by_position && unconstrained(constraints, dofs))
+    add(vector, cell_vector, dofs);
+  else
+    constraints.distribute_local_to_global(cell_vector, dofs, vector);
+}
+
 } // namespace sealfe

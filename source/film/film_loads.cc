@@ -237,7 +237,7 @@ bool LoadIntegrator::polar_assembly() const
   // matrices (JFOSolver::compute_cell_matrices) and the reynolds system
   // (ReynoldsCavitationSolver::assemble) take the values of PolarCellValues on the built-in
   // annulus.
-  return solver.mesh_parameters.mesh_file.empty() && solver.polar_rows;
+  return solver.assembles_on_polar_rows();
 }
 
 void LoadIntegrator::add_leakages(const std::vector<types::global_dof_index> &dofs,
@@ -322,7 +322,9 @@ FilmLoads LoadIntegrator::affine_loads() const
         continue;
       // the values the assembly took for this cell (see polar_assembly)
       const bool turned = polar && polar->reinit(cell);
-      if (!turned)
+      if (turned)
+        polar->get_function_gradients(cell_p, grad_p);
+      else
       {
         fe_values.reinit(cell);
         fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
@@ -339,19 +341,12 @@ FilmLoads LoadIntegrator::affine_loads() const
                      : s.local_film(x.x);
         x.JxW = turned ? polar->JxW(q) : fe_values.JxW(q);
         x.p = p_q[q];
+        x.grad_p = grad_p[q];
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
           shape_grad[i] = turned ? polar->shape_grad(i, q) : fe_values.shape_grad(i, q);
           shape_value[i] = turned ? polar->shape_value(i, q) : fe_values.shape_value(i, q);
         }
-        if (turned)
-        {
-          x.grad_p = Tensor<1, 2>();
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            x.grad_p += cell_p(i) * shape_grad[i];
-        }
-        else
-          x.grad_p = grad_p[q];
         add_residual(x, none, shape_grad, shape_value, local_residual);
       }
       add_leakages(dofs, local_residual, sums);
@@ -512,8 +507,7 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   std::optional<PolarCellValues> polar;
   if (polar_assembly())
     polar.emplace(*s.mapping, *s.fe, quadrature);
-  std::vector<Vector<double>> cell_dp(n_k, Vector<double>(dofs_per_cell)), cell_dv = cell_dp;
-  Vector<double> cell_v(dofs_per_cell);
+  Vector<double> cell_v(dofs_per_cell), cell_d(dofs_per_cell);
 
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -605,40 +599,46 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
       {
         // the same terms with the turned row values and the film the assembly took at them
         // (film_matrices: the row's radius and angle); jfo: the void fraction and the cell's
-        // streamline parameter (x.tau, set above) as in its G
+        // streamline parameter (x.tau, set above) as in its G. The point values of the loop
+        // above are done with: p, grad_p, ... take the rows' (those without a nodal vector keep
+        // their zeros).
         cell->get_dof_values(s.locally_relevant_solution, cell_p);
+        polar->get_function_values(cell_p, p);
+        polar->get_function_gradients(cell_p, grad_p);
         if (jfo)
+        {
           cell->get_dof_values(s.locally_relevant_void, cell_v);
+          polar->get_function_values(cell_v, v);
+          polar->get_function_gradients(cell_v, grad_v);
+        }
         for (unsigned int k = 0; k < n_k; ++k)
         {
           if (k < dp_nodal.size() && dp_nodal[k])
-            cell->get_dof_values(*dp_nodal[k], cell_dp[k]);
-          else
-            cell_dp[k] = 0;
+          {
+            cell->get_dof_values(*dp_nodal[k], cell_d);
+            polar->get_function_values(cell_d, dp_k[k]);
+            polar->get_function_gradients(cell_d, grad_dp_k[k]);
+          }
           if (k < dv_nodal.size() && dv_nodal[k])
-            cell->get_dof_values(*dv_nodal[k], cell_dv[k]);
-          else
-            cell_dv[k] = 0;
+          {
+            cell->get_dof_values(*dv_nodal[k], cell_d);
+            polar->get_function_values(cell_d, dv_k[k]);
+            polar->get_function_gradients(cell_d, grad_dv_k[k]);
+          }
         }
         for (unsigned int q = 0; q < n_q; ++q)
         {
           x.x = polar->quadrature_point(q);
           x.f = s.local_film(x.x, polar->radius(q), polar->angle(q), cos_psi, sin_psi);
           x.JxW = polar->JxW(q);
-          x.p = 0;
-          x.v = 0;
-          x.grad_p = x.grad_v = Tensor<1, 2>();
+          x.p = p[q];
+          x.v = v[q];
+          x.grad_p = grad_p[q];
+          x.grad_v = grad_v[q];
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
           {
             shape_grad[i] = polar->shape_grad(i, q);
             shape_value[i] = polar->shape_value(i, q);
-            x.p += cell_p(i) * shape_value[i];
-            x.grad_p += cell_p(i) * shape_grad[i];
-            if (jfo)
-            {
-              x.v += cell_v(i) * shape_value[i];
-              x.grad_v += cell_v(i) * shape_grad[i];
-            }
           }
           for (unsigned int k = 0; k < n_k; ++k)
           {
@@ -649,13 +649,10 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
               d.dh = d.direction->dh ? d.direction->dh(x.f.r, x.f.theta) : 0.0;
               d.dh_t = perturbation_squeeze(*d.direction, x.f.r, x.f.theta, w_frame);
             }
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            {
-              d.dp += cell_dp[k](i) * shape_value[i];
-              d.grad_dp += cell_dp[k](i) * shape_grad[i];
-              d.dv += cell_dv[k](i) * shape_value[i];
-              d.grad_dv += cell_dv[k](i) * shape_grad[i];
-            }
+            d.dp = dp_k[k][q];
+            d.dv = dv_k[k][q];
+            d.grad_dp = grad_dp_k[k][q];
+            d.grad_dv = grad_dv_k[k][q];
             add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
           }
         }
@@ -781,21 +778,12 @@ std::vector<LoadIntegrator::VectorType> LoadIntegrator::linearized_right_hand_si
       {
         // grad p, v and grad v from the cell's nodal values and the turned shape functions
         cell->get_dof_values(s.locally_relevant_solution, cell_p);
+        polar->get_function_gradients(cell_p, grad_p);
         if (jfo)
-          cell->get_dof_values(s.locally_relevant_void, cell_v);
-        for (unsigned int q = 0; q < n_q; ++q)
         {
-          grad_p[q] = grad_v[q] = Tensor<1, 2>();
-          v[q] = 0;
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            grad_p[q] += cell_p(i) * polar->shape_grad(i, q);
-            if (jfo)
-            {
-              v[q] += cell_v(i) * polar->shape_value(i, q);
-              grad_v[q] += cell_v(i) * polar->shape_grad(i, q);
-            }
-          }
+          cell->get_dof_values(s.locally_relevant_void, cell_v);
+          polar->get_function_values(cell_v, v);
+          polar->get_function_gradients(cell_v, grad_v);
         }
       }
       else

@@ -418,10 +418,8 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
         }
         cell->get_mg_dof_indices(dofs);
         // a cell without boundary dofs: distribute_local_to_global's sums, by position
-        if (data->by_position[l] && CellSparsity::unconstrained(data->level_constraints[l], dofs))
-          CellSparsity::add(matrix, cell_matrix, dofs);
-        else
-          data->level_constraints[l].distribute_local_to_global(cell_matrix, dofs, matrix);
+        CellSparsity::distribute(data->level_constraints[l], data->by_position[l], cell_matrix,
+                                 dofs, matrix);
       }
     matrix.compress(VectorOperation::add);
   }

@@ -444,7 +444,7 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
       data_out.add_data_vector(*set.vector, set.name);
   const output::VtuFields vtu_fields = data_out.fields();
   std::vector<DataOutBase::Patch<2, 2>> polar;
-  const bool use_polar_rows = s.mesh_parameters.mesh_file.empty() && s.polar_rows;
+  const bool use_polar_rows = s.assembles_on_polar_rows();
   if (use_polar_rows)
     polar = polar_patches(s.dof_handler, *s.mapping, s.polynomial_degree, sets, postprocessor,
                           vtu_fields.names.size());

@@ -105,7 +105,7 @@ void JFOSolver::compute_cell_matrices()
   // circles (LoadIntegrator::polar_assembly), so that the leakages of the solved field balance to
   // round-off.
   std::optional<PolarCellValues> polar;
-  if (s.mesh_parameters.mesh_file.empty() && s.polar_rows)
+  if (s.assembles_on_polar_rows())
     polar.emplace(*s.mapping, *s.fe, quadrature);
   cell_A.resize(s.triangulation.n_active_cells());
   cell_G.resize(s.triangulation.n_active_cells());
@@ -117,10 +117,7 @@ void JFOSolver::compute_cell_matrices()
       cell_A[k].reinit(n, n);
       cell_G[k].reinit(n, n);
       cell_F[k].reinit(n);
-      if (polar && polar->reinit(cell))
-        s.film_matrices(*polar, cell, true, cell_A[k], cell_G[k], cell_F[k], {});
-      else
-        s.cell_film_matrices(fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
+      s.cell_film_matrices(polar, fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
     }
 }
 
@@ -561,12 +558,8 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
         // without its index translation (adding a zero to an owned entry leaves its bits). On
         // several ranks every round takes this path (the global matrices are one-rank); on one
         // rank the FB-Newton steps' Jacobians and the rounds on meshes with hanging nodes do
-        const bool by_position =
-            s.matrix_by_position && CellSparsity::unconstrained(s.homogeneous_constraints, dofs);
-        if (by_position)
-          CellSparsity::add(residual, R, dofs);
-        else
-          s.homogeneous_constraints.distribute_local_to_global(R, dofs, residual);
+        CellSparsity::distribute(s.homogeneous_constraints, s.matrix_by_position, R, dofs,
+                                 residual);
         if (with_jacobian)
         {
           correction = 0;
@@ -605,17 +598,12 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
             }
           }
           R += correction;
-          if (by_position)
-          {
-            if (!select_columns)
-              CellSparsity::add(s.system_matrix, J, dofs);
-            CellSparsity::add(newton_rhs, R, dofs);
-          }
-          else if (select_columns)
-            s.homogeneous_constraints.distribute_local_to_global(R, dofs, newton_rhs);
+          if (select_columns)
+            CellSparsity::distribute(s.homogeneous_constraints, s.matrix_by_position, R, dofs,
+                                     newton_rhs);
           else
-            s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix,
-                                                                 newton_rhs);
+            CellSparsity::distribute(s.homogeneous_constraints, s.matrix_by_position, J, R, dofs,
+                                     s.system_matrix, newton_rhs);
         }
       }
   if (!by_products)

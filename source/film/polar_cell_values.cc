@@ -97,6 +97,32 @@ bool PolarCellValues::reinit(const Triangulation<2>::cell_iterator &cell)
   return true;
 }
 
+void PolarCellValues::get_function_values(const Vector<double> &dof_values,
+                                          std::vector<double> &values) const
+{
+  AssertDimension(dof_values.size(), n);
+  values.resize(n_q);
+  for (unsigned int q = 0; q < n_q; ++q)
+  {
+    values[q] = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      values[q] += dof_values(i) * shape_value(i, q);
+  }
+}
+
+void PolarCellValues::get_function_gradients(const Vector<double> &dof_values,
+                                             std::vector<Tensor<1, 2>> &gradients) const
+{
+  AssertDimension(dof_values.size(), n);
+  gradients.resize(n_q);
+  for (unsigned int q = 0; q < n_q; ++q)
+  {
+    gradients[q] = Tensor<1, 2>();
+    for (unsigned int i = 0; i < n; ++i)
+      gradients[q] += dof_values(i) * shape_grad(i, q);
+  }
+}
+
 void PolarCellValues::turn_gradients() const
 {
   for (std::size_t k = 0; k < grads.size(); ++k)

@@ -37,7 +37,7 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
   // assemblies (PolarCellValues; a cell that is no rotation of its row's first cell takes
   // FEValues); the loads' leakage residual takes the same values (LoadIntegrator::polar_assembly).
   std::optional<PolarCellValues> polar;
-  if (s.mesh_parameters.mesh_file.empty() && s.polar_rows)
+  if (s.assembles_on_polar_rows())
     polar.emplace(*s.mapping, *s.fe, quadrature);
   if (with_jacobian)
     s.system_matrix = 0;
@@ -49,10 +49,7 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
       cell->get_dof_values(u, local_u);
       for (unsigned int j = 0; j < n; ++j)
         local_p(j) = s.cavitation.pressure + s.pressure_scale * local_u(j);
-      if (polar && polar->reinit(cell))
-        s.film_matrices(*polar, cell, false, A, G, F, {});
-      else
-        s.cell_film_matrices(fe_values, cell, false, A, G, F);
+      s.cell_film_matrices(polar, fe_values, cell, false, A, G, F);
       A.vmult(R, local_p);
       R -= F;
       R *= -1.0; // rhs holds -R

@@ -214,7 +214,7 @@ void ReynoldsSolver::assemble_system()
   // axis, so its geometry comes from one FEValues evaluation per row (PolarCellValues; a cell
   // that is not such a rotation takes FEValues).
   std::optional<PolarCellValues> polar;
-  if (mesh_parameters.mesh_file.empty() && polar_rows)
+  if (assembles_on_polar_rows())
     polar.emplace(*mapping, *fe, quadrature);
   std::function<void(unsigned int, const LocalFilm &)> at_point, at_polar_point;
   if (gather)
@@ -237,22 +237,14 @@ void ReynoldsSolver::assemble_system()
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
         // the full-film pressure matrix and Couette + squeeze right-hand side
-        if (polar && polar->reinit(cell))
-          film_matrices(*polar, cell, false, cell_matrix, unused, cell_rhs, at_polar_point);
-        else
-          cell_film_matrices(fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point);
+        cell_film_matrices(polar, fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point,
+                           at_polar_point);
         if (gather)
           affine_loads.add_cell(relevant_index);
         // a cell without constrained dofs: the same sums as distribute_local_to_global, the
         // owned rows by position
-        if (matrix_by_position && CellSparsity::unconstrained(constraints, local_dof_indices))
-        {
-          CellSparsity::add(system_matrix, cell_matrix, local_dof_indices);
-          CellSparsity::add(system_rhs, cell_rhs, local_dof_indices);
-        }
-        else
-          constraints.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices,
-                                                 system_matrix, system_rhs);
+        CellSparsity::distribute(constraints, matrix_by_position, cell_matrix, cell_rhs,
+                                 local_dof_indices, system_matrix, system_rhs);
       }
   }
   catch (...)
@@ -512,12 +504,19 @@ double ReynoldsSolver::streamline_tau(const DoFHandler<2>::active_cell_iterator 
 // solved by the primal-dual active-set method (Hintermueller, Ito & Kunisch 2002).
 
 void ReynoldsSolver::cell_film_matrices(
-    FEValues<2> &fe_values, const DoFHandler<2>::active_cell_iterator &cell, const bool with_void,
-    FullMatrix<double> &A, FullMatrix<double> &G, Vector<double> &F,
-    const std::function<void(unsigned int, const LocalFilm &)> &at_point) const
+    std::optional<PolarCellValues> &polar, FEValues<2> &fe_values,
+    const DoFHandler<2>::active_cell_iterator &cell, const bool with_void, FullMatrix<double> &A,
+    FullMatrix<double> &G, Vector<double> &F,
+    const std::function<void(unsigned int, const LocalFilm &)> &at_point,
+    const std::function<void(unsigned int, const LocalFilm &)> &at_polar_point) const
 {
-  fe_values.reinit(cell);
-  film_matrices(fe_values, cell, with_void, A, G, F, at_point);
+  if (polar && polar->reinit(cell))
+    film_matrices(*polar, cell, with_void, A, G, F, at_polar_point);
+  else
+  {
+    fe_values.reinit(cell);
+    film_matrices(fe_values, cell, with_void, A, G, F, at_point);
+  }
 }
 
 template <class Values>

@@ -79,6 +79,26 @@ public:
   static void add(dealii::TrilinosWrappers::MPI::Vector &vector,
                   const dealii::Vector<double> &cell_vector,
                   const std::vector<dealii::types::global_dof_index> &dofs);
+
+  /// A cell's matrix and right-hand side into the system: by position (add) where `by_position`
+  /// (the matrix has reinit()'s pattern) and unconstrained(constraints, dofs), else
+  /// constraints.distribute_local_to_global (which also applies the constraints). The two give
+  /// the same sums, so the choice is one of speed only.
+  static void distribute(const dealii::AffineConstraints<double> &constraints, bool by_position,
+                         const dealii::FullMatrix<double> &cell_matrix,
+                         const dealii::Vector<double> &cell_vector,
+                         const std::vector<dealii::types::global_dof_index> &dofs,
+                         dealii::TrilinosWrappers::SparseMatrix &matrix,
+                         dealii::TrilinosWrappers::MPI::Vector &vector);
+  /// The same for a matrix alone (the multigrid levels) and for a vector alone.
+  static void distribute(const dealii::AffineConstraints<double> &constraints, bool by_position,
+                         const dealii::FullMatrix<double> &cell_matrix,
+                         const std::vector<dealii::types::global_dof_index> &dofs,
+                         dealii::TrilinosWrappers::SparseMatrix &matrix);
+  static void distribute(const dealii::AffineConstraints<double> &constraints, bool by_position,
+                         const dealii::Vector<double> &cell_vector,
+                         const std::vector<dealii::types::global_dof_index> &dofs,
+                         dealii::TrilinosWrappers::MPI::Vector &vector);
 };
 
 } // namespace sealfe

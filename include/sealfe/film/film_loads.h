@@ -133,8 +133,10 @@ private:
   /// holds a dof on a circle (a dof inside a boundary edge belongs to that edge's one cell), so
   /// only its residual enters the leakages.
   std::vector<bool> leakage_cells() const;
-  /// Whether the solved system was assembled with PolarCellValues (the built-in annulus, a
-  /// system of ReynoldsSolver::assemble_system): the leakage residual then takes them too.
+  /// Whether the solved system was assembled with PolarCellValues (ReynoldsSolver::
+  /// assembles_on_polar_rows: the full film, the JFO cell matrices and the reynolds model's
+  /// system on the built-in annulus): the leakage residual and the linearised right-hand sides
+  /// then take them too.
   bool polar_assembly() const;
   /// Adds a cell residual's entries at the dofs on the inner and outer circle to the leakage
   /// sums (sum[5], sum[6]).

@@ -10,6 +10,7 @@
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
 
 #include <array>
 #include <map>
@@ -65,6 +66,15 @@ public:
       turn_gradients();
     return grads[std::size_t(q) * n + i];
   }
+
+  /// The values and gradients at the points of the finite element function whose values at this
+  /// cell's dofs are `dof_values` (cell->get_dof_values): FEValues::get_function_values' and
+  /// get_function_gradients' sums, over the shape functions in order at each point. The cell's
+  /// nodal values, not a global vector, since reinit() takes the cell without its dofs.
+  void get_function_values(const dealii::Vector<double> &dof_values,
+                           std::vector<double> &values) const;
+  void get_function_gradients(const dealii::Vector<double> &dof_values,
+                              std::vector<dealii::Tensor<1, 2>> &gradients) const;
 
   /// The same in the frame of the row's first cell (the cell turned back by its angle): points,
   /// gradients, and a vector of this cell's frame turned into it. Products of two vectors are

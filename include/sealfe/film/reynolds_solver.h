@@ -30,10 +30,13 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace sealfe
 {
+class PolarCellValues;
+
 /// Solves, for the pressure p(x, y) on ri <= r <= ro (Cartesian coordinates of the dam plane),
 ///
 ///   div( h^3/(12 mu) grad p ) = div( h u_mean ) + dh/dt (+ f),   u_mean = (w1 + w2)/2 * r e_theta
@@ -173,6 +176,9 @@ public:
   /// leakage residual (tests compare the two). The multigrid level matrices (cg-gmg) always
   /// take PolarCellValues.
   bool polar_rows = true;
+  /// Whether the assemblies take each cell's geometry from its radial row (PolarCellValues): the
+  /// built-in annulus's cells are rotations of one radial row (a mesh file's are not).
+  bool assembles_on_polar_rows() const { return mesh_parameters.mesh_file.empty() && polar_rows; }
 
   /// Everything the solve depends on. Changing it between runs is allowed; the mesh is rebuilt
   /// only when the discretisation changes.
@@ -212,11 +218,16 @@ private:
   void solve_cavitation();
   /// Scale of the cavitation models' pressure unknown from the full-film solution.
   double full_film_pressure_scale() const;
+  /// film_matrices with the values an assembly takes for `cell`: its row's where `polar` holds
+  /// the rows (made where assembles_on_polar_rows()) and the cell is a rotation of its row's
+  /// first cell, else `fe_values` reinitialised on it; `at_point` or `at_polar_point` (the same
+  /// callback for values of the row) sees each point's film.
   void cell_film_matrices(
-      dealii::FEValues<2> &fe_values, const dealii::DoFHandler<2>::active_cell_iterator &cell,
-      const bool with_void, dealii::FullMatrix<double> &A, dealii::FullMatrix<double> &G,
-      dealii::Vector<double> &F,
-      const std::function<void(unsigned int, const LocalFilm &)> &at_point = {}) const;
+      std::optional<PolarCellValues> &polar, dealii::FEValues<2> &fe_values,
+      const dealii::DoFHandler<2>::active_cell_iterator &cell, const bool with_void,
+      dealii::FullMatrix<double> &A, dealii::FullMatrix<double> &G, dealii::Vector<double> &F,
+      const std::function<void(unsigned int, const LocalFilm &)> &at_point = {},
+      const std::function<void(unsigned int, const LocalFilm &)> &at_polar_point = {}) const;
   /// cell_film_matrices on values already reinitialised on `cell` (FEValues, or the turned
   /// values of a polar row, PolarCellValues: defined and instantiated in reynolds_solver.cc).
   template <class Values>
