@@ -169,10 +169,8 @@ bool JFOSolver::prepare_global_matrices()
             for (unsigned int j = 0; j < n; ++j)
               J(i, j) = scale * C(i, j);
           cell->get_dof_indices(dofs);
-          if (s.matrix_by_position && CellSparsity::unconstrained(s.homogeneous_constraints, dofs))
-            CellSparsity::add(s.system_matrix, J, dofs);
-          else
-            s.homogeneous_constraints.distribute_local_to_global(J, dofs, s.system_matrix);
+          CellSparsity::distribute(s.homogeneous_constraints, s.matrix_by_position, J, dofs,
+                                   s.system_matrix);
         }
       s.system_matrix.compress(VectorOperation::add);
       values->clear();
