@@ -1,14 +1,13 @@
-#include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 
-#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
-#include <deal.II/fe/fe_values.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <iterator>
 #include <limits>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -25,48 +24,44 @@ ReynoldsCavitationSolver::ReynoldsCavitationSolver(ReynoldsSolver &solver, const
 double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_jacobian,
                                           VectorType &rhs)
 {
-  const QGauss<2> quadrature(s.polynomial_degree + 2);
-  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
-                        update_values | update_gradients | update_quadrature_points |
-                            update_JxW_values);
   const unsigned int n = s.fe->n_dofs_per_cell();
-  FullMatrix<double> A(n, n), G(n, n), J(n, n);
-  Vector<double> F(n), R(n), local_u(n), local_p(n);
+  // The Jacobian P A is the same at every iteration (the problem is linear in p): assembled
+  // from the cells once, then copied (the same entries, bit for bit).
+  const bool assemble_matrix = with_jacobian && !have_pressure_jacobian;
+  FullMatrix<double> J(n, n);
+  Vector<double> R(n), local_u(n), local_p(n);
   std::vector<types::global_dof_index> dofs(n);
-  // The built-in annulus: each cell's geometry from its radial row, as in the full-film and JFO
-  // assemblies (PolarCellValues; a cell that is no rotation of its row's first cell takes
-  // FEValues); the loads' leakage residual takes the same values (LoadIntegrator::polar_assembly).
-  std::optional<PolarCellValues> polar;
-  if (s.mesh_parameters.mesh_file.empty() && s.polar_rows)
-    polar.emplace(*s.mapping, *s.fe, quadrature);
-  if (with_jacobian)
+  if (assemble_matrix)
     s.system_matrix = 0;
   rhs = 0;
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
+      const auto k = cell->active_cell_index();
       cell->get_dof_indices(dofs);
       cell->get_dof_values(u, local_u);
       for (unsigned int j = 0; j < n; ++j)
         local_p(j) = s.cavitation.pressure + s.pressure_scale * local_u(j);
-      if (polar && polar->reinit(cell))
-        s.film_matrices(*polar, cell, false, A, G, F, {});
-      else
-        s.cell_film_matrices(fe_values, cell, false, A, G, F);
-      A.vmult(R, local_p);
-      R -= F;
+      cell_A[k].vmult(R, local_p);
+      R -= cell_F[k];
       R *= -1.0; // rhs holds -R
-      if (with_jacobian)
+      if (assemble_matrix)
       {
-        J = A;
+        J = cell_A[k];
         J *= s.pressure_scale;
         s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix, rhs);
       }
       else
         s.homogeneous_constraints.distribute_local_to_global(R, dofs, rhs);
     }
-  if (with_jacobian)
+  if (assemble_matrix)
+  {
     s.system_matrix.compress(VectorOperation::add);
+    pressure_jacobian.copy_from(s.system_matrix);
+    have_pressure_jacobian = true;
+  }
+  else if (with_jacobian)
+    s.system_matrix.copy_from(pressure_jacobian);
   rhs.compress(VectorOperation::add);
 
   {
@@ -94,8 +89,13 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
   }
   return rhs.l2_norm();
 }
+
 void ReynoldsCavitationSolver::solve()
 {
+  {
+    TimerOutput::Scope timer_scope(s.timer, "reynolds cell matrices");
+    s.compute_cell_matrices(false, cell_A, cell_G, cell_F);
+  }
   s.reynolds_diagonal.reinit(s.locally_owned_dofs, s.mpi_communicator);
   // Reynolds: warm start from the full-film solution clipped at s.cavitation.pressure.
   TrilinosWrappers::MPI::Vector u_owned(s.locally_owned_dofs, s.mpi_communicator);
@@ -111,6 +111,10 @@ void ReynoldsCavitationSolver::solve()
       du(s.locally_owned_dofs, s.mpi_communicator);
   std::vector<types::global_dof_index> previous_set = {
       std::numeric_limits<types::global_dof_index>::max()};
+  // SEALFE_REYNOLDS_TRACE: one line per iteration on stderr (residual, set size, nodes that
+  // entered and left the set), the evidence of doc/performance.md's iteration counts.
+  const bool trace = std::getenv("SEALFE_REYNOLDS_TRACE") && s.reports_progress &&
+                     Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0;
   double residual = 0;
   bool converged = false;
   unsigned int it = 0;
@@ -118,6 +122,20 @@ void ReynoldsCavitationSolver::solve()
   {
     residual = assemble(u, true, rhs) / flow_scale;
     const auto &set = s.active_set;
+    if (trace)
+    {
+      std::vector<types::global_dof_index> entered, left;
+      if (it > 0)
+      {
+        std::set_difference(set.begin(), set.end(), previous_set.begin(), previous_set.end(),
+                            std::back_inserter(entered));
+        std::set_difference(previous_set.begin(), previous_set.end(), set.begin(), set.end(),
+                            std::back_inserter(left));
+      }
+      std::cerr << "sealfe: reynolds iteration " << it << " (" << s.dof_handler.n_dofs()
+                << " dofs): relative residual " << residual << ", cavitated nodes " << set.size()
+                << ", entered " << entered.size() << ", left " << left.size() << std::endl;
+    }
     const bool same_set =
         Utilities::MPI::min(static_cast<int>(set == previous_set), s.mpi_communicator) == 1;
     if (same_set && residual < s.cavitation.tolerance)

@@ -2,7 +2,12 @@
 // ReynoldsSolver's discretisation, by the primal-dual active-set method.
 #pragma once
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
 
 namespace sealfe
 {
@@ -29,6 +34,14 @@ private:
 
   ReynoldsSolver &s;
   const double flow_scale;
+  /// The film matrices A and F of every cell (ReynoldsSolver::compute_cell_matrices): the
+  /// problem is linear in p, so they serve every iteration.
+  std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
+  std::vector<dealii::Vector<double>> cell_F;
+  /// P A assembled once (the Jacobian of every iteration before its active rows are replaced):
+  /// copied into the system matrix instead of assembling the cells again.
+  dealii::TrilinosWrappers::SparseMatrix pressure_jacobian;
+  bool have_pressure_jacobian = false;
 };
 
 } // namespace sealfe
