@@ -21,17 +21,14 @@ ReynoldsCavitationSolver::ReynoldsCavitationSolver(ReynoldsSolver &solver, const
 {
 }
 
-double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_jacobian,
-                                          VectorType &rhs)
+void ReynoldsCavitationSolver::mass_residual(const VectorType &u, const bool with_jacobian,
+                                             VectorType &rhs)
 {
   const unsigned int n = s.fe->n_dofs_per_cell();
-  // The Jacobian P A is the same at every iteration (the problem is linear in p): assembled
-  // from the cells once, then copied (the same entries, bit for bit).
-  const bool assemble_matrix = with_jacobian && !have_pressure_jacobian;
   FullMatrix<double> J(n, n);
   Vector<double> R(n), local_u(n), local_p(n);
   std::vector<types::global_dof_index> dofs(n);
-  if (assemble_matrix)
+  if (with_jacobian)
     s.system_matrix = 0;
   rhs = 0;
   for (const auto &cell : s.dof_handler.active_cell_iterators())
@@ -45,7 +42,7 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
       cell_A[k].vmult(R, local_p);
       R -= cell_F[k];
       R *= -1.0; // rhs holds -R
-      if (assemble_matrix)
+      if (with_jacobian)
       {
         J = cell_A[k];
         J *= s.pressure_scale;
@@ -54,15 +51,25 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
       else
         s.homogeneous_constraints.distribute_local_to_global(R, dofs, rhs);
     }
+  if (with_jacobian)
+    s.system_matrix.compress(VectorOperation::add);
+  rhs.compress(VectorOperation::add);
+}
+
+double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_jacobian,
+                                          VectorType &rhs)
+{
+  // The Jacobian P A is the same at every iteration (the problem is linear in p): assembled
+  // from the cells once, then copied (the same entries, bit for bit).
+  const bool assemble_matrix = with_jacobian && !have_pressure_jacobian;
+  mass_residual(u, assemble_matrix, rhs);
   if (assemble_matrix)
   {
-    s.system_matrix.compress(VectorOperation::add);
     pressure_jacobian.copy_from(s.system_matrix);
     have_pressure_jacobian = true;
   }
   else if (with_jacobian)
     s.system_matrix.copy_from(pressure_jacobian);
-  rhs.compress(VectorOperation::add);
 
   {
     // Primal-dual active set: dof i is cavitated if u_i - R_i / J_ii <= 0; there the equation is
@@ -90,6 +97,57 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
   return rhs.l2_norm();
 }
 
+void ReynoldsCavitationSolver::start(VectorType &u_owned)
+{
+  // The active-set iteration moves the cavity boundary by about one layer of nodes per
+  // iteration from the clipped full film (measured on the tilted seal: 13, 25, 50 iterations at
+  // 32 x 64, 64 x 128, 128 x 256 cells, doc/performance.md), so it starts from the converged
+  // solution of the mesh twice as coarse (recursively), as JFO does. The full film is solved
+  // only where there is no such start (ReynoldsSolver::run does not).
+  std::vector<double> coarse_pressure, coarse_void;
+  const bool sequenced = sequenced_start && s.coarse_level_state(coarse_pressure, coarse_void);
+  if (!sequenced)
+  {
+    s.solve();
+    s.pressure_scale = s.full_film_pressure_scale();
+  }
+  std::size_t k = 0;
+  for (const auto i : s.locally_owned_dofs)
+  {
+    const double p = sequenced ? coarse_pressure[k++] : s.locally_relevant_solution[i];
+    u_owned[i] = std::max((p - s.cavitation.pressure) / s.pressure_scale, 0.0);
+  }
+  u_owned.compress(VectorOperation::insert);
+}
+
+ReynoldsCavitationSolver::Complementarity
+ReynoldsCavitationSolver::complementarity_at_solution(ReynoldsSolver &solver)
+{
+  ReynoldsCavitationSolver c(solver, std::max(solver.system_rhs.l2_norm(), 1e-300));
+  ReynoldsSolver &s = solver;
+  s.compute_cell_matrices(false, c.cell_A, c.cell_G, c.cell_F);
+  VectorType u_owned(s.locally_owned_dofs, s.mpi_communicator),
+      rhs(s.locally_owned_dofs, s.mpi_communicator);
+  for (const auto i : s.locally_owned_dofs)
+    u_owned[i] = (s.locally_relevant_solution[i] - s.cavitation.pressure) / s.pressure_scale;
+  u_owned.compress(VectorOperation::insert);
+  VectorType u(s.locally_owned_dofs, s.locally_relevant_dofs, s.mpi_communicator);
+  u = u_owned;
+  c.mass_residual(u, false, rhs);
+  Complementarity result;
+  result.flow_scale = c.flow_scale;
+  for (const auto i : s.locally_owned_dofs)
+    if (!s.homogeneous_constraints.is_constrained(i))
+    {
+      result.u.push_back(u_owned[i]);
+      result.residual.push_back(-rhs[i] / c.flow_scale);
+      result.jacobian_diagonal.push_back(s.reynolds_diagonal[i] / c.flow_scale);
+      result.cavitated.push_back(
+          std::binary_search(s.active_set.begin(), s.active_set.end(), i) ? 1 : 0);
+    }
+  return result;
+}
+
 void ReynoldsCavitationSolver::solve()
 {
   {
@@ -97,12 +155,8 @@ void ReynoldsCavitationSolver::solve()
     s.compute_cell_matrices(false, cell_A, cell_G, cell_F);
   }
   s.reynolds_diagonal.reinit(s.locally_owned_dofs, s.mpi_communicator);
-  // Reynolds: warm start from the full-film solution clipped at s.cavitation.pressure.
   TrilinosWrappers::MPI::Vector u_owned(s.locally_owned_dofs, s.mpi_communicator);
-  for (const auto i : s.locally_owned_dofs)
-    u_owned[i] =
-        std::max((s.locally_relevant_solution[i] - s.cavitation.pressure) / s.pressure_scale, 0.0);
-  u_owned.compress(VectorOperation::insert);
+  start(u_owned);
   TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs, s.locally_relevant_dofs,
                                   s.mpi_communicator);
   u = u_owned;
@@ -161,8 +215,10 @@ void ReynoldsCavitationSolver::solve()
       << s.cavitation.tolerance << "); refine the mesh or raise Cavitation/Maximum iterations";
     throw std::runtime_error(m.str());
   }
-  // The last assembly built the Jacobian at the solution: factorise it for linearized_loads.
-  s.factorize(false, true);
+  // The last assembly built the Jacobian at the solution: factorise it for linearized_loads
+  // (a mesh-sequencing level only starts the next mesh).
+  if (!s.start_only)
+    s.factorize(false, true);
   TrilinosWrappers::MPI::Vector p(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)
     p[i] = s.cavitation.pressure + s.pressure_scale * u_owned[i];
