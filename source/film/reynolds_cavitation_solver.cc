@@ -215,10 +215,10 @@ void ReynoldsCavitationSolver::solve()
       << s.cavitation.tolerance << "); refine the mesh or raise Cavitation/Maximum iterations";
     throw std::runtime_error(m.str());
   }
-  // The last assembly built the Jacobian at the solution: factorise it for linearized_loads
-  // (a mesh-sequencing level only starts the next mesh).
-  if (!s.start_only)
-    s.factorize(false, true);
+  // The Jacobian at the solution, which linearized_loads solves with, is already factorised:
+  // the iteration stopped because the set repeated, so the last assembly built the matrix of
+  // the previous iteration again (the same copy of P A with the same rows replaced), and the
+  // linear solver holds that one's factorisation from the last step.
   TrilinosWrappers::MPI::Vector p(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)
     p[i] = s.cavitation.pressure + s.pressure_scale * u_owned[i];
