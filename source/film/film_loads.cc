@@ -233,10 +233,9 @@ std::vector<bool> LoadIntegrator::leakage_cells() const
 
 bool LoadIntegrator::polar_assembly() const
 {
-  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld), the JFO cell
-  // matrices (JFOSolver::compute_cell_matrices) and the reynolds system
-  // (ReynoldsCavitationSolver::assemble) take the values of PolarCellValues on the built-in
-  // annulus.
+  // ReynoldsSolver::assemble_system (full film, also solved for half-Sommerfeld) and the cell
+  // matrices of the JFO and reynolds systems (ReynoldsSolver::compute_cell_matrices) take the
+  // values of PolarCellValues on the built-in annulus.
   return solver.assembles_on_polar_rows();
 }
 

@@ -2,17 +2,14 @@
 #include <sealfe/film/jfo_solver.h>
 
 #include <sealfe/film/cell_sparsity.h>
-#include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/sparse_direct.h>
 
-#include <deal.II/base/mpi_remote_point_evaluation.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <Epetra_CrsMatrix.h>
 
@@ -87,38 +84,6 @@ JFOSolver::JFOSolver(ReynoldsSolver &solver, const double flow_scale)
     x->reinit(owned, comm);
   for (VectorType *x : {&a, &v, &ta, &tv})
     x->reinit(owned, relevant, comm);
-}
-
-void JFOSolver::compute_cell_matrices()
-{
-  // A, G, F do not depend on the state: computed once per solve and reused by every Newton
-  // iteration and line-search trial.
-  const unsigned int n = s.fe->n_dofs_per_cell();
-  const QGauss<2> quadrature(s.polynomial_degree + 2);
-  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
-                        update_values | update_gradients | update_quadrature_points |
-                            update_JxW_values);
-  // The built-in annulus: each cell's geometry (points, radius and angle, JxW, gradients) from
-  // its radial row, as in the full-film assembly (ReynoldsSolver::assemble_system), so no
-  // mapping, atan2 or square root per point; a cell that is not its row's first cell turned
-  // takes FEValues. The leakage residual of the loads takes the same values for the cells on the
-  // circles (LoadIntegrator::polar_assembly), so that the leakages of the solved field balance to
-  // round-off.
-  std::optional<PolarCellValues> polar;
-  if (s.assembles_on_polar_rows())
-    polar.emplace(*s.mapping, *s.fe, quadrature);
-  cell_A.resize(s.triangulation.n_active_cells());
-  cell_G.resize(s.triangulation.n_active_cells());
-  cell_F.resize(s.triangulation.n_active_cells());
-  for (const auto &cell : s.dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
-    {
-      const auto k = cell->active_cell_index();
-      cell_A[k].reinit(n, n);
-      cell_G[k].reinit(n, n);
-      cell_F[k].reinit(n);
-      s.cell_film_matrices(polar, fe_values, cell, true, cell_A[k], cell_G[k], cell_F[k]);
-    }
 }
 
 bool JFOSolver::prepare_global_matrices()
@@ -665,12 +630,7 @@ void JFOSolver::warm_start()
   // dimples, and never regenerates a gmsh mesh (AnnulusMesh::sequences_jfo): such levels gave no
   // better start (the same global factorisations on the finest mesh) and cost their own solves,
   // or another gmsh run (doc/textures.md, Cost of JFO on resolved faces).
-  const unsigned int next = s.current_coarsening + 1;
-  const bool sequenced =
-      s.dof_handler.n_dofs() > 200 && s.mesh_parameters.can_coarsen(next) &&
-      s.mesh_parameters.sequences_jfo(next, s.film.inner_radius, s.film.outer_radius) &&
-      coarse_start();
-  if (!sequenced)
+  if (!coarse_start())
   {
     s.solve();
     s.pressure_scale = s.full_film_pressure_scale();
@@ -691,244 +651,14 @@ void JFOSolver::warm_start()
 
 bool JFOSolver::coarse_start()
 {
-  // The coarse level solves the same physics: a copy of the whole settings (flow factors and
-  // contact included) and the same test hooks. Kept in the solver, so that its mesh is reused.
-  // Several ranks on the built-in mesh: every rank solves the coarse levels whole by itself
-  // (MPI_COMM_SELF), as one rank would, instead of all ranks together. They are small (a quarter
-  // of this level and less) but need many direct factorisations, which on 2 ranks took 7x the
-  // one-rank time (44 against 6 s at 1.05e6 dofs, doc/performance.md "Two ranks, session 10");
-  // each rank then holds the whole coarse solution, and its start values are those of one rank.
-  // Meshes from files stay distributed (each rank would read, or generate, the file again).
-  const bool whole_on_each_rank = Utilities::MPI::n_mpi_processes(s.mpi_communicator) > 1 &&
-                                  s.settings.mesh.mesh_file.empty() &&
-                                  !(s.settings.mesh.mesh_size > 0);
-  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(s.mpi_communicator);
-  // a solver kept from a run of the other kind (a mesh file set since) is made again
-  if (s.coarse_solver && Utilities::MPI::n_mpi_processes(s.coarse_solver->mpi_communicator) !=
-                             (whole_on_each_rank ? 1 : n_ranks))
-    s.coarse_solver.reset();
-  if (!s.coarse_solver)
-    s.coarse_solver = std::make_unique<ReynoldsSolver>(
-        s.settings, whole_on_each_rank ? MPI_COMM_SELF : s.mpi_communicator);
-  ReynoldsSolver &coarse = *s.coarse_solver;
-  coarse.settings = s.settings;
-  coarse.boundary_pressure = s.boundary_pressure;
-  coarse.source = s.source;
-  coarse.start_only = true;
-  const bool first_rank = Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0;
-  coarse.reports_progress = s.reports_progress && first_rank;
-  TimerOutput::Scope timer_scope(s.timer, "jfo coarse levels");
-  // Every rank decides together: solved whole on each rank, the coarse levels could fail on
-  // one rank only (memory, say), which would then take the full-film start alone and wait
-  // forever in its collective solve.
-  std::string failure;
-  try
-  {
-    coarse.run(s.current_coarsening + 1);
-  }
-  catch (std::exception &e)
-  {
-    failure = e.what();
-  }
-  const bool failed_somewhere =
-      whole_on_each_rank ? Utilities::MPI::max(int(!failure.empty()), s.mpi_communicator) != 0
-                         : !failure.empty();
-  if (failed_somewhere)
-  {
-    if (!failure.empty() && s.reports_progress && (first_rank || whole_on_each_rank))
-      std::cerr << "JFO: the coarse start failed (" << failure
-                << "); starting from the full film instead" << std::endl;
-    return false; // fall back to the full-film start
-  }
-  // The support points of the owned dofs as DoFTools::map_dofs_to_support_points computes them
-  // (the mapped unit support points of every cell that is not artificial, a later cell
-  // overwriting), into a vector by owned index instead of a std::map: its 1.3e5 insertions were a
-  // quarter of the coarse start's time at 1.3e5 dofs.
-  const unsigned int n_owned = s.locally_owned_dofs.n_elements();
-  std::vector<Point<2>> support(n_owned);
-  {
-    FEValues<2> fe_values(*s.mapping, *s.fe, Quadrature<2>(s.fe->get_unit_support_points()),
-                          update_quadrature_points);
-    std::vector<types::global_dof_index> dofs(s.fe->n_dofs_per_cell());
-    for (const auto &cell : s.dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-      {
-        fe_values.reinit(cell);
-        cell->get_dof_indices(dofs);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          if (s.locally_owned_dofs.is_element(dofs[i]))
-            support[s.locally_owned_dofs.index_within_set(dofs[i])] = fe_values.quadrature_point(i);
-      }
-  }
-  std::vector<Point<2>> points;
-  std::vector<types::global_dof_index> indices;
-  std::vector<unsigned int> owned_index; // of each point
-  {
-    unsigned int k = 0;
-    for (const auto i : s.locally_owned_dofs)
-    {
-      if (!s.homogeneous_constraints.is_constrained(i))
-      {
-        indices.push_back(i);
-        owned_index.push_back(k);
-        points.push_back(support[k]);
-      }
-      ++k;
-    }
-  }
   std::vector<double> pressure, void_fraction;
-  bool all_found = true;
-  const std::vector<const VectorType *> fields = {&coarse.locally_relevant_solution,
-                                                  &coarse.locally_relevant_void};
-  std::vector<std::vector<double>> values;
-  // the built-in polar grid: cells by (r, theta); a mesh file refined globally: the coarse
-  // level is the same mesh refined once less (parent cells); other meshes on one rank: a search
-  // over the coarse cells' bounding boxes (values_at_points)
-  if (values_on_polar_grid(points, pressure, void_fraction))
-  {
-    // every point found by its (r, theta)
-  }
-  else if ((!s.settings.mesh.mesh_file.empty() &&
-            values_from_parent_cells(s.dof_handler, coarse.dof_handler, fields, indices, values)) ||
-           values_at_points(*coarse.mapping, coarse.dof_handler, fields, points, values))
-  {
-    pressure = std::move(values[0]);
-    void_fraction = std::move(values[1]);
-  }
-  else
-  {
-    // several ranks: deal.II's point search (at 1e6 points a third of the JFO time,
-    // doc/performance.md; on one rank 25 s of 36 s for 1e5 points on a gmsh mesh)
-    Utilities::MPI::RemotePointEvaluation<2> cache;
-    pressure = VectorTools::point_values<1>(*coarse.mapping, coarse.dof_handler,
-                                            coarse.locally_relevant_solution, points, cache);
-    void_fraction =
-        VectorTools::point_values<1>(cache, coarse.dof_handler, coarse.locally_relevant_void);
-    all_found = cache.all_points_found();
-  }
-  s.coarse_iterations = coarse.cavitation_iterations + coarse.coarse_iterations;
-  const auto &coarse_work = coarse.linear_system_solver.statistics();
-  s.coarse_factorizations = coarse_work.factorizations + coarse.coarse_factorizations;
-  s.coarse_krylov_iterations = coarse_work.krylov_iterations + coarse.coarse_krylov_iterations;
-  // the same answer on every rank (each rank looked up its own points)
-  if (Utilities::MPI::min(int(all_found), s.mpi_communicator) == 0)
+  if (!s.coarse_level_state(pressure, void_fraction)) // sets s.pressure_scale
     return false;
-  // The coarse level's pressure scale (a scale only: the solution does not depend on it, but
-  // every rank must scale its rows alike: rank 0's copy), and the Dirichlet values of this mesh
-  // at the constrained dofs.
-  s.pressure_scale = whole_on_each_rank
-                         ? Utilities::MPI::broadcast(s.mpi_communicator, coarse.pressure_scale, 0)
-                         : coarse.pressure_scale;
-  VectorType boundary(s.locally_owned_dofs, s.mpi_communicator);
-  s.constraints.distribute(boundary);
-  const double *b = owned_values(boundary);
   double *pa = owned_values(a_owned), *pv = owned_values(v_owned);
-  for (unsigned int k = 0; k < n_owned; ++k)
+  for (std::size_t k = 0; k < pressure.size(); ++k)
   {
-    pa[k] = std::max((b[k] - s.cavitation.pressure) / s.pressure_scale, 0.0);
-    pv[k] = 0;
-  }
-  for (unsigned int k = 0; k < indices.size(); ++k)
-  {
-    pa[owned_index[k]] = std::max((pressure[k] - s.cavitation.pressure) / s.pressure_scale, 0.0);
-    pv[owned_index[k]] = std::clamp(void_fraction[k], 0.0, 1.0);
-  }
-  return true;
-}
-
-bool JFOSolver::values_on_polar_grid(const std::vector<Point<2>> &points,
-                                     std::vector<double> &pressure,
-                                     std::vector<double> &void_fraction) const
-{
-  const ReynoldsSolver &coarse = *s.coarse_solver;
-  // the coarse mesh whole on this rank (one rank, or coarse_start's levels on each rank)
-  if (!s.settings.mesh.mesh_file.empty() ||
-      Utilities::MPI::n_mpi_processes(coarse.mpi_communicator) > 1)
-    return false;
-  // The built-in mesh is a tensor grid in (r, theta): radial nodes (graded) and nt equal angles.
-  // Its cells are found from a point's polar coordinates; the reference coordinates inside the
-  // cell are those of the polar rectangle, which the cell's mapping follows up to its O(h^3)
-  // departure from the circles: far below the discretisation error, and this is only the start
-  // of the Newton iteration on the finer mesh.
-  const auto &tria = coarse.dof_handler.get_triangulation();
-  std::vector<double> radii;
-  for (const Point<2> &v : tria.get_vertices())
-    radii.push_back(v.norm());
-  std::sort(radii.begin(), radii.end());
-  const double ri = radii.front(), ro = radii.back(), tolerance = 1e-9 * ro;
-  radii.erase(std::unique(radii.begin(), radii.end(),
-                          [tolerance](double a, double b) { return b - a < tolerance; }),
-              radii.end());
-  const unsigned int nr = radii.size() - 1;
-  if (nr == 0 || tria.n_active_cells() % nr != 0)
-    return false;
-  const unsigned int nt = tria.n_active_cells() / nr;
-  const double dtheta = 2 * M_PI / nt;
-  auto angle = [](const Point<2> &x)
-  {
-    const double t = std::atan2(x[1], x[0]);
-    return t < 0 ? t + 2 * M_PI : t;
-  };
-  auto radial_index = [&](const double r)
-  {
-    const auto it = std::upper_bound(radii.begin(), radii.end(), r);
-    return std::clamp<long>(it - radii.begin() - 1, 0, long(nr) - 1);
-  };
-  auto angular_index = [&](const double t)
-  { return std::min<unsigned int>(static_cast<unsigned int>(t / dtheta), nt - 1); };
-  std::vector<DoFHandler<2>::active_cell_iterator> cells(nr * nt);
-  for (const auto &cell : coarse.dof_handler.active_cell_iterators())
-  {
-    // the slot of the cell's mean vertex radius and its centre's angle (the norm of the vertex
-    // mean falls below the cell when the cells span large angles: 8 % inside at 8 cells around)
-    double r = 0;
-    for (const unsigned int v : cell->vertex_indices())
-      r += 0.25 * cell->vertex(v).norm();
-    const std::size_t k = angular_index(angle(cell->center())) * nr + radial_index(r);
-    if (cells[k].state() == IteratorState::valid)
-      return false; // two cells in one slot: not a polar tensor grid
-    cells[k] = cell;
-  }
-  const FiniteElement<2> &fe = *coarse.fe;
-  Vector<double> p_nodal(fe.n_dofs_per_cell()), v_nodal(fe.n_dofs_per_cell());
-  pressure.resize(points.size());
-  void_fraction.resize(points.size());
-  // (r, theta) of vertex k of a cell, theta unwrapped next to `near`
-  auto polar = [&](const Point<2> &x, const double near)
-  {
-    double t = angle(x);
-    t += 2 * M_PI * std::round((near - t) / (2 * M_PI));
-    return Tensor<1, 2>({x.norm(), t});
-  };
-  for (std::size_t q = 0; q < points.size(); ++q)
-  {
-    const double r = std::clamp(points[q].norm(), ri, ro), t = angle(points[q]);
-    const auto &cell = cells[angular_index(t) * nr + radial_index(r)];
-    // the polar rectangle P(xi, eta) = P0 + xi (P1 - P0) + eta (P2 - P0) of vertices 0, 1, 2
-    const Tensor<1, 2> P0 = polar(cell->vertex(0), t), P1 = polar(cell->vertex(1), t),
-                       P2 = polar(cell->vertex(2), t), P = Tensor<1, 2>({r, t});
-    const Tensor<1, 2> e1 = P1 - P0, e2 = P2 - P0, d = P - P0;
-    const double det = e1[0] * e2[1] - e1[1] * e2[0];
-    const double xi = (d[0] * e2[1] - d[1] * e2[0]) / det,
-                 eta = (e1[0] * d[1] - e1[1] * d[0]) / det;
-    // a point outside the cell its (r, theta) slot names: the angles are not nt equal ones
-    // (a mesh aligned with surface features, or sheared along spiral grooves); the caller
-    // searches instead
-    const double slack = 1e-6;
-    if (std::min(xi, eta) < -slack || std::max(xi, eta) > 1 + slack)
-      return false;
-    const Point<2> unit(std::clamp(xi, 0.0, 1.0), std::clamp(eta, 0.0, 1.0));
-    cell->get_dof_values(coarse.locally_relevant_solution, p_nodal);
-    cell->get_dof_values(coarse.locally_relevant_void, v_nodal);
-    double p = 0, v = 0;
-    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
-    {
-      const double phi = fe.shape_value(k, unit);
-      p += p_nodal[k] * phi;
-      v += v_nodal[k] * phi;
-    }
-    pressure[q] = p;
-    void_fraction[q] = v;
+    pa[k] = std::max((pressure[k] - s.cavitation.pressure) / s.pressure_scale, 0.0);
+    pv[k] = std::clamp(void_fraction[k], 0.0, 1.0);
   }
   return true;
 }
@@ -1297,7 +1027,7 @@ void JFOSolver::solve()
 {
   {
     TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
-    compute_cell_matrices();
+    s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
   }
   warm_start();
   unsigned int next_polish = 0, polish_gap = 1;
@@ -1411,7 +1141,7 @@ void JFOSolver::solve()
 JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
 {
   GlobalMatricesAndAssembly m;
-  compute_cell_matrices();
+  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
   if (!prepare_global_matrices())
     return m;
   m.PA = global_PA;
@@ -1445,7 +1175,7 @@ JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
 
 std::vector<double> JFOSolver::jacobian_at_solution(const bool by_columns)
 {
-  compute_cell_matrices();
+  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
   // The solution's unknowns: v as stored, a = (p - p_cav)/P from p = p_cav + P a, exact where
   // a = 0 and within round-off elsewhere, which the Jacobian does not see where v = 0 (there
   // d_a = 1 - a/|a| = 0 for every a > 0). Checked: the complementarity derivatives must give

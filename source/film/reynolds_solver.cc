@@ -633,10 +633,7 @@ void ReynoldsSolver::solve_cavitation()
   if (jfo)
     JFOSolver(*this, flow_scale).solve(); // sets pressure_scale
   else
-  {
-    pressure_scale = full_film_pressure_scale();
-    ReynoldsCavitationSolver(*this, flow_scale).solve();
-  }
+    ReynoldsCavitationSolver(*this, flow_scale).solve(); // sets pressure_scale
 }
 
 double ReynoldsSolver::full_film_pressure_scale() const
@@ -722,10 +719,11 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   jfo_newton_steps = jfo_active_set_rounds = jfo_band_rounds = jfo_low_rank_updates = 0;
   setup_system(coarsening);
   assemble_system();
-  // JFO starts from the JFO solution of the mesh twice as coarse (mesh sequencing) and solves
-  // the full film only where that start is not available (JFOSolver::warm_start).
+  // The cavitation models (jfo, reynolds) start from their solution of the mesh twice as coarse
+  // (mesh sequencing) and solve the full film only where that start is not available
+  // (JFOSolver::warm_start, ReynoldsCavitationSolver::start).
   last_iterations = 0;
-  if (cavitation.model != Cavitation::jfo)
+  if (!cavitation.is_nonlinear())
     solve();
   cavitation_iterations = 0;
   cavitation_residual = 0;

@@ -62,8 +62,6 @@ public:
   std::vector<double> jacobian_at_solution(bool by_columns);
 
 private:
-  /// Cell matrices A, G, F (state independent): once per solve, reused by every iteration.
-  void compute_cell_matrices();
   /// Assemble the residual (and the reduced Newton system) at (a, v); returns the merit
   /// 1/2 (|R|^2 + |phi|^2). `active_set_step`: the linear system of a fixed cavitated set.
   double assemble(const VectorType &a, const VectorType &v, bool with_jacobian,
@@ -85,16 +83,9 @@ private:
   bool jacobian_by_columns(const VectorType &a, const VectorType &v);
   /// Start from the converged state of the mesh twice as coarse, else the clipped full film.
   void warm_start();
-  /// Start values from the mesh-sequencing solver (a coarse ReynoldsSolver with a copy of the
-  /// settings); false if it fails or its mesh does not cover this one.
+  /// Start values from the mesh-sequencing solver (ReynoldsSolver::coarse_level_state); false
+  /// if there is none, it fails or its mesh does not cover this one.
   bool coarse_start();
-  /// The coarse level's nodal pressure and void fraction at `points` when both meshes are the
-  /// built-in polar grid and the coarse level is whole on this rank (one rank, or the coarse
-  /// levels each rank solves by itself): cells found by (r, theta), no point search. Returns
-  /// false (and leaves the outputs undefined) otherwise.
-  bool values_on_polar_grid(const std::vector<dealii::Point<2>> &points,
-                            std::vector<double> &pressure,
-                            std::vector<double> &void_fraction) const;
   /// Largest |phi(a_j, v_j)| over the unconstrained dofs.
   double complementarity(const VectorType &a, const VectorType &v) const;
   /// Newton direction (da, dv) of the current Jacobian: factorise, solve, recover.
@@ -124,6 +115,8 @@ private:
 
   ReynoldsSolver &s;
   const double flow_scale;
+  /// Cell matrices A, G, F (state independent, ReynoldsSolver::compute_cell_matrices): once per
+  /// solve, reused by every iteration.
   std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
   std::vector<dealii::Vector<double>> cell_F;
   /// Values of the assembled P A and G (row by row as the system matrix stores them), and

@@ -2,16 +2,22 @@
 // ReynoldsSolver's discretisation, by the primal-dual active-set method.
 #pragma once
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
 
 namespace sealfe
 {
 class ReynoldsSolver;
 
 /// Solves p_j = p_cav + P u_j with the complementarity min(u_j, R_j/J_jj) = 0 (an obstacle
-/// problem; Hintermueller, Ito & Kunisch 2002) starting from the solver's full-film solution
-/// clipped at p_cav. Leaves the pressure, the active set (nodes held at p_cav) and the
-/// factorised Jacobian at the solution in the solver. One object per solve.
+/// problem; Hintermueller, Ito & Kunisch 2002) starting from the solution of the mesh twice as
+/// coarse (mesh sequencing), else from the full film clipped at p_cav. Leaves the pressure, the
+/// active set (nodes held at p_cav) and the factorised Jacobian at the solution in the solver.
+/// One object per solve.
 class ReynoldsCavitationSolver
 {
 public:
@@ -22,13 +28,42 @@ public:
   /// Throws std::runtime_error if the iteration does not converge.
   void solve();
 
+  /// Tests: false starts every mesh from its clipped full film (the start before mesh
+  /// sequencing), to compare the two.
+  static inline bool sequenced_start = true;
+  /// Test hook: the complementarity data at the solution a solve left in `solver`, for its
+  /// owned dofs without constraints (in increasing index): u = (p - p_cav)/P, the mass residual
+  /// R = A p - F over the flow scale |F| (recomputed from the stored pressure), the Jacobian's
+  /// diagonal P A_ii over |F|, whether the node is in the cavitated set, and |F|.
+  struct Complementarity
+  {
+    std::vector<double> u, residual, jacobian_diagonal;
+    std::vector<char> cavitated;
+    double flow_scale = 0;
+  };
+  static Complementarity complementarity_at_solution(ReynoldsSolver &solver);
+
 private:
   /// Residual (-R in `rhs`, |rhs| returned) at u, and with `with_jacobian` the Newton matrix in
   /// the solver's system matrix; both with the rows of the active set replaced by u_i = 0.
   double assemble(const VectorType &u, bool with_jacobian, VectorType &rhs);
+  /// The mass residual -R = F - A p at u (into `rhs`, every row), and with `with_jacobian` P A
+  /// into the solver's system matrix.
+  void mass_residual(const VectorType &u, bool with_jacobian, VectorType &rhs);
+  /// The start u: the coarse mesh's solution at this mesh's nodes, else the clipped full film
+  /// (solved here); sets the solver's pressure scale.
+  void start(VectorType &u_owned);
 
   ReynoldsSolver &s;
   const double flow_scale;
+  /// The film matrices A and F of every cell (ReynoldsSolver::compute_cell_matrices): the
+  /// problem is linear in p, so they serve every iteration.
+  std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
+  std::vector<dealii::Vector<double>> cell_F;
+  /// P A assembled once (the Jacobian of every iteration before its active rows are replaced):
+  /// copied into the system matrix instead of assembling the cells again.
+  dealii::TrilinosWrappers::SparseMatrix pressure_jacobian;
+  bool have_pressure_jacobian = false;
 };
 
 } // namespace sealfe

@@ -133,8 +133,9 @@ public:
   AnnulusMesh &mesh() { return settings.mesh; }
   /// How often the mesh, dofs and sparsity were built (1 for a sequence of runs on one geometry).
   unsigned int n_setups() const { return setup_count; }
-  /// The solver of the mesh twice as coarse that gave the last JFO solve its start (mesh
-  /// sequencing), or nullptr. Its settings are a copy of these (with the coarser coarsening).
+  /// The solver of the mesh twice as coarse that gave the last cavitation solve (jfo, reynolds)
+  /// its start (mesh sequencing), or nullptr. Its settings are a copy of these (with the coarser
+  /// coarsening).
   const ReynoldsSolver *coarse_level_solver() const { return coarse_solver.get(); }
   bool error_estimate_enabled() const { return estimate_error; }
   unsigned int linear_iterations() const { return last_iterations; }
@@ -235,6 +236,26 @@ private:
                      const bool with_void, dealii::FullMatrix<double> &A,
                      dealii::FullMatrix<double> &G, dealii::Vector<double> &F,
                      const std::function<void(unsigned int, const LocalFilm &)> &at_point) const;
+  /// The cavitation models' film matrices A, G, F of every locally owned cell (by active cell
+  /// index): they depend on the film only, so each solve computes them once for all its
+  /// iterations (cavitation_levels.cc). `with_void`: G too (JFO); without it G stays empty and A
+  /// has the full-film assembly's bits (the Reynolds model).
+  void compute_cell_matrices(bool with_void, std::vector<dealii::FullMatrix<double>> &A,
+                             std::vector<dealii::FullMatrix<double>> &G,
+                             std::vector<dealii::Vector<double>> &F) const;
+  /// Mesh sequencing of the cavitation models: solves the same problem on the mesh twice as
+  /// coarse (coarse_solver, itself sequenced) and gives its pressure and void fraction at this
+  /// mesh's owned dofs (by owned index; the constrained dofs their boundary pressure and no
+  /// void), and the coarse level's pressure_scale. False where there is no such level or it
+  /// failed: the caller starts from the full film.
+  bool coarse_level_state(std::vector<double> &pressure_at_dofs, std::vector<double> &void_at_dofs);
+  /// The coarse level's nodal pressure and void fraction at `points` when both meshes are the
+  /// built-in polar grid and the coarse level is whole on this rank (one rank, or the coarse
+  /// levels each rank solves by itself): cells found by (r, theta), no point search. Returns
+  /// false (and leaves the outputs undefined) otherwise.
+  bool coarse_values_on_polar_grid(const std::vector<dealii::Point<2>> &points,
+                                   std::vector<double> &pressure,
+                                   std::vector<double> &void_fraction) const;
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
   FilmLoads compute_loads() const;
 
@@ -246,11 +267,12 @@ private:
   std::unique_ptr<FilmSettings> setup_settings;
   unsigned int setup_coarsening = 0;
   unsigned int setup_count = 0;
-  /// JFO mesh sequencing: the solver of the mesh twice as coarse (kept, so that its mesh is
-  /// reused too).
+  /// Mesh sequencing of the cavitation models: the solver of the mesh twice as coarse (kept, so
+  /// that its mesh is reused too).
   std::unique_ptr<ReynoldsSolver> coarse_solver;
-  /// A mesh-sequencing level: its JFO state only starts the finer mesh, so run() accepts the
-  /// active-set state of a band round without the global check and computes no loads.
+  /// A mesh-sequencing level: its state only starts the finer mesh, so run() accepts the JFO
+  /// active-set state of a band round without the global check and computes no loads (nor the
+  /// factorisation of the linearised loads).
   bool start_only = false;
   /// Whether rank 0 of its communicator prints progress and fallback lines on stderr: not for
   /// the copies of the coarse levels that ranks other than 0 solve on their own (JFOSolver::

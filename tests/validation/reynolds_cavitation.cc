@@ -1,0 +1,115 @@
+// The Reynolds (Swift-Stieber) cavitation model, p >= p_cav by the primal-dual active-set method
+// (ReynoldsCavitationSolver), on the tilted Varney & Green seal (benchmarks/reynolds_speed):
+//  - the solution satisfies the discrete complementarity conditions, to the bounds its stopping
+//    test implies;
+//  - the start from the mesh twice as coarse (mesh sequencing) and the old start from the clipped
+//    full film end on the same solution: the same cavitated set and the same loads to the
+//    stopping tolerance (the discrete problem is a linear complementarity problem with a
+//    symmetric positive definite matrix, whose solution is unique).
+#include <sealfe/film/reynolds_cavitation_solver.h>
+#include <sealfe/film/reynolds_solver.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace sealfe;
+
+namespace
+{
+// The benchmark's tilted seal: eps = gamma ro / C0 = 0.5, 4 bar sealed, 1000 rad/s.
+FilmThickness tilted_seal()
+{
+  FilmThickness film;
+  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  return film;
+}
+
+FilmLoads solve_reynolds(ReynoldsSolver &solver, const bool sequenced, const unsigned int nr,
+                         const unsigned int nt)
+{
+  // put the switch back even if the solve throws (later tests take the default)
+  struct Restore
+  {
+    ~Restore() { ReynoldsCavitationSolver::sequenced_start = true; }
+  } restore;
+  ReynoldsCavitationSolver::sequenced_start = sequenced;
+  solver.cavitation.model = Cavitation::reynolds;
+  solver.polynomial_degree = 2;
+  solver.mesh().radial_cells = nr;
+  solver.mesh().circumferential_cells = nt;
+  return solver.run(tilted_seal(), OperatingConditions());
+}
+} // namespace
+
+TEST(ReynoldsCavitation, SolutionSatisfiesTheComplementarityConditions)
+{
+  // The iteration stops when the cavitated set repeats and the relative residual (the mass
+  // residuals R_i = (A p - F)_i of the free nodes and u_i of the cavitated ones, over the flow
+  // scale |F|) is below tol; the set is {i : u_i - R_i / J_ii <= 0} with J_ii = P A_ii > 0.
+  // So at the solution, with the residual recomputed from the stored pressure:
+  //   free nodes:      |R_i| <= tol |F|, and u_i > R_i / J_ii >= -tol |F| / J_ii;
+  //   cavitated nodes: |u_i| <= tol |F| (p = p_cav), and R_i >= J_ii u_i >= -J_ii tol |F|
+  //                    (the film there would take up liquid: no outflow to hold p at p_cav).
+  // (The hook gives R_i and J_ii over |F|.)
+  // The recomputation from p = p_cav + P u adds round-off of p only: 1e-12 relative to the
+  // largest |A_ij p_j| terms, far below tol = 1e-10 on this mesh, so the bounds are stated with
+  // a factor 2 over the stopping tolerance.
+  ReynoldsSolver solver(MPI_COMM_WORLD);
+  const FilmLoads loads = solve_reynolds(solver, true, 16, 64);
+  const double tol = solver.cavitation.tolerance;
+  const auto c = ReynoldsCavitationSolver::complementarity_at_solution(solver);
+  ASSERT_FALSE(c.u.empty());
+  unsigned int cavitated = 0;
+  for (std::size_t k = 0; k < c.u.size(); ++k)
+  {
+    const double bound = 2 * tol; // relative to |F|
+    if (c.cavitated[k])
+    {
+      ++cavitated;
+      EXPECT_LE(std::abs(c.u[k]), bound * c.flow_scale) << "cavitated node " << k;
+      EXPECT_GE(c.residual[k], -bound * c.jacobian_diagonal[k] * c.flow_scale)
+          << "cavitated node " << k;
+    }
+    else
+    {
+      EXPECT_LE(std::abs(c.residual[k]), bound) << "free node " << k;
+      EXPECT_GE(c.u[k], -bound / c.jacobian_diagonal[k]) << "free node " << k;
+    }
+  }
+  std::cout << "cavitated nodes " << cavitated << " of " << c.u.size() << ", cavitated fraction "
+            << loads.cavitated_fraction << ", iterations " << solver.nonlinear_iterations() << " (+"
+            << solver.coarse_nonlinear_iterations() << " on coarser meshes)\n";
+  EXPECT_GT(cavitated, 0u); // the tilted seal does cavitate
+  EXPECT_GT(loads.cavitated_fraction, 0.05);
+}
+
+TEST(ReynoldsCavitation, SequencedStartGivesTheFullFilmStartsSolution)
+{
+  // The discrete problem is the LCP  u >= 0, R(u) = P A u + (A p_cav - F) >= 0, u^T R = 0 with
+  // A the stiffness matrix of the pressure flow on the free dofs: symmetric positive definite,
+  // so the LCP has exactly one solution (Cottle, Pang & Stone 1992, Thm. 3.3.7), whatever the
+  // start of the active-set iteration. Both starts therefore end on the same cavitated set (a
+  // node could differ only where u_i = R_i = 0 to round-off: none here, checked by the set
+  // equality) and on the same linear system, whose solutions differ by the stopping residual:
+  // relative mass residual below tol = 1e-10 each. The loads are integrals of p, whose
+  // sensitivity to a residual of relative size tol is of that size (the adjoint of an integral
+  // of an elliptic solution is smooth): stated 10 tol.
+  ReynoldsSolver old_start(MPI_COMM_WORLD), sequenced(MPI_COMM_WORLD);
+  const FilmLoads a = solve_reynolds(old_start, false, 16, 64);
+  const FilmLoads b = solve_reynolds(sequenced, true, 16, 64);
+  const double tol = old_start.cavitation.tolerance;
+  std::cout << "iterations: full-film start " << old_start.nonlinear_iterations() << ", sequenced "
+            << sequenced.nonlinear_iterations() << " (+" << sequenced.coarse_nonlinear_iterations()
+            << " on coarser meshes)\n";
+  ASSERT_NE(sequenced.coarse_level_solver(), nullptr); // it did start from the coarse mesh
+  EXPECT_EQ(old_start.coarse_nonlinear_iterations(), 0u);
+  const auto ca = ReynoldsCavitationSolver::complementarity_at_solution(old_start);
+  const auto cb = ReynoldsCavitationSolver::complementarity_at_solution(sequenced);
+  EXPECT_EQ(ca.cavitated, cb.cavitated);
+  for (auto member : {&FilmLoads::force_z, &FilmLoads::moment_x, &FilmLoads::moment_y,
+                      &FilmLoads::leakage_inner, &FilmLoads::leakage_outer})
+    EXPECT_NEAR(a.*member, b.*member, 10 * tol * std::abs(a.*member));
+  EXPECT_EQ(a.cavitated_fraction, b.cavitated_fraction);
+}
