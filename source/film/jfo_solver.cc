@@ -276,6 +276,32 @@ const double *plain_values(const TrilinosWrappers::MPI::Vector &x, const std::si
     return nullptr;
   return e[0];
 }
+
+/// x at the local columns of M (values[c] is x at dof M.ColMap().GID64(c)): on one rank from the
+/// plain layout, on several from the ghosted vector, which holds every column of an owned row
+/// (a dof of a cell around it, owned or ghost, so locally relevant). False if x lacks a column.
+bool values_at_columns(const TrilinosWrappers::MPI::Vector &x, const Epetra_CrsMatrix &M,
+                       const std::size_t n_dofs, std::vector<double> &values)
+{
+  values.resize(M.NumMyCols());
+  if (const double *plain = plain_values(x, n_dofs))
+  {
+    for (int c = 0; c < M.NumMyCols(); ++c)
+      values[c] = plain[M.ColMap().GID64(c)];
+    return true;
+  }
+  if (!x.has_ghost_elements())
+    return false;
+  const Epetra_MultiVector &e = x.trilinos_vector();
+  for (int c = 0; c < M.NumMyCols(); ++c)
+  {
+    const int local = e.Map().LID(M.ColMap().GID64(c));
+    if (local < 0)
+      return false;
+    values[c] = e[0][local];
+  }
+  return true;
+}
 } // namespace
 
 const double *JFOSolver::owned_values(const VectorType &x) const
@@ -368,26 +394,8 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
       (M.NumMyRows() == 0 ||
        (row_gid.front() == static_cast<long long>(owned.nth_index_in_set(0)) &&
         row_gid.back() == static_cast<long long>(owned.nth_index_in_set(owned.n_elements() - 1))));
-  // a and v at the columns: on one rank the plain layout (column c is dof column_gid[c]), on
-  // several the ghosted vectors' entries (every column of an owned row is a dof of a cell around
-  // it, owned or ghost, so locally relevant)
-  std::vector<double> column_a(M.NumMyCols()), column_v(M.NumMyCols());
-  for (auto [x, values] : {std::pair{&a, &column_a}, std::pair{&v, &column_v}})
-    if (const double *plain = plain_values(*x, n))
-      for (std::size_t c = 0; c < values->size(); ++c)
-        (*values)[c] = plain[column_gid[c]];
-    else if (!x->has_ghost_elements())
-      layout = false;
-    else
-    {
-      const Epetra_MultiVector &e = x->trilinos_vector();
-      for (std::size_t c = 0; c < values->size() && layout; ++c)
-      {
-        const int local = e.Map().LID(static_cast<long long>(column_gid[c]));
-        layout = local >= 0;
-        (*values)[c] = layout ? e[0][local] : 0.0;
-      }
-    }
+  std::vector<double> column_a, column_v;
+  layout = layout && values_at_columns(a, M, n, column_a) && values_at_columns(v, M, n, column_v);
   // every rank takes the same path (the constant terms' sums over the ranks are collective)
   if (Utilities::MPI::min(layout ? 1 : 0, s.mpi_communicator) == 0)
     return false;
@@ -518,9 +526,8 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
         R *= -1.0; // residual vector holds -R
         // A cell without constrained dofs by position (CellSparsity, where the system matrix was
         // built by it): the same additions in the same order as distribute_local_to_global,
-        // without its index translation (adding a zero to an owned entry leaves its bits). On
-        // several ranks every round takes this path (the global matrices are one-rank); on one
-        // rank the FB-Newton steps' Jacobians and the rounds on meshes with hanging nodes do
+        // without its index translation (adding a zero to an owned entry leaves its bits). The
+        // FB-Newton steps' Jacobians and the rounds on meshes with hanging nodes take this path
         CellSparsity::distribute(s.homogeneous_constraints, s.matrix_by_position, R, dofs,
                                  residual);
         if (with_jacobian)
@@ -578,15 +585,13 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
       // column j from P A where node j keeps its pressure (a_j >= v_j), else from G
       // the values are set in place (for_each_row)
       const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
+      std::vector<double> column_a, column_v;
+      AssertThrow(values_at_columns(a, M, s.dof_handler.n_dofs(), column_a) &&
+                      values_at_columns(v, M, s.dof_handler.n_dofs(), column_v),
+                  ExcMessage("JFO: a column of the Jacobian without its value on this rank"));
       std::vector<char> keep_pressure(M.NumMyCols());
-      // one rank (always, with global matrices): the entries by index, not by a map lookup
-      const std::size_t n_dofs = s.dof_handler.n_dofs();
-      const double *pa = plain_values(a, n_dofs), *pv = plain_values(v, n_dofs);
       for (int c = 0; c < M.NumMyCols(); ++c)
-      {
-        const auto j = M.ColMap().GID64(c);
-        keep_pressure[c] = pa && pv ? pa[j] >= pv[j] : a[j] >= v[j];
-      }
+        keep_pressure[c] = column_a[c] >= column_v[c];
       for_each_row(M,
                    [&](int, const int entries, double *row_values, const int *columns,
                        const std::size_t first)
