@@ -4,6 +4,7 @@
 #include <sealfe/film/film_thickness.h>
 #include <sealfe/film/operating_conditions.h>
 #include <sealfe/io/output.h>
+#include <sealfe/numerics/blas_kernels.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/exceptions.h>
@@ -304,6 +305,8 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       summary["version"] = version;
       summary["git_revision"] = git_revision;
       summary["mpi_ranks"] = Utilities::MPI::n_mpi_processes(comm);
+      const numerics::BlasKernels blas = numerics::blas_kernels();
+      summary["blas_kernels"] = {{"kernels", blas.kernels}, {"chosen_by", blas.chosen_by}};
       summary["wall_time"] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       check_results(summary, staging);

@@ -6,6 +6,8 @@
 // the list below. CMake builds every applications/*.cc into the executable.
 #include "driver.h"
 
+#include <sealfe/numerics/blas_kernels.h>
+
 #include <deal.II/base/mpi.h>
 
 #include <cstdlib>
@@ -45,6 +47,8 @@ void choose_transport()
 
 int main(int argc, char **argv)
 {
+  // before any BLAS call: the factorisations' dense kernels for this CPU
+  sealfe::numerics::use_cpu_blas_kernels();
   choose_transport();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace sealfe::applications;

@@ -1,0 +1,33 @@
+// The dense kernels behind the sparse direct solver (MUMPS's frontal matrices run in BLAS-3):
+// makes OpenBLAS use the vector instructions of the CPU it runs on when it does not recognise
+// that CPU and falls back to its generic SSE3 ("Prescott") kernels.
+#pragma once
+
+#include <string>
+
+namespace sealfe::numerics
+{
+/// What the process's BLAS runs on, after use_cpu_blas_kernels().
+struct BlasKernels
+{
+  /// OpenBLAS's kernel set ("SkylakeX", "Haswell", ...); empty when the BLAS is not an OpenBLAS
+  /// that chooses its kernels at run time (then nothing was changed).
+  std::string kernels;
+  /// Who chose them: "OpenBLAS" (its own CPU detection), "OPENBLAS_CORETYPE" (the user's
+  /// environment) or "sealfe" (OpenBLAS fell back to Prescott on a CPU with AVX2 or AVX-512).
+  std::string chosen_by;
+};
+
+/// OpenBLAS built with DYNAMIC_ARCH (Debian's) picks its kernels from the CPU model when it is
+/// loaded. A model newer than the release (OpenBLAS 0.3.21 in Debian 12 on Intel family 6 model
+/// 207) gets the SSE3 fallback, which makes MUMPS's numeric factorisations about twice as slow
+/// (doc/performance.md "BLAS kernels"). If the user has not set OPENBLAS_CORETYPE and OpenBLAS
+/// took that fallback on a CPU whose features (checked with the OS's support, as the compiler's
+/// __builtin_cpu_supports does) allow AVX-512 or AVX2 kernels, re-initialise OpenBLAS's kernel
+/// table with those (the documented OPENBLAS_CORETYPE choice, made in-process). Call first in
+/// main(), before any BLAS call and before other threads start; calling it again changes nothing.
+BlasKernels use_cpu_blas_kernels();
+
+/// The state after the last use_cpu_blas_kernels() (what it found if it was never called).
+BlasKernels blas_kernels();
+} // namespace sealfe::numerics

@@ -1,0 +1,79 @@
+#include <sealfe/numerics/blas_kernels.h>
+
+#include <dlfcn.h>
+#include <strings.h>
+
+#include <cstdlib>
+
+namespace sealfe::numerics
+{
+namespace
+{
+using NameFunction = char *(*)();
+using VoidFunction = void (*)();
+
+/// OpenBLAS's run-time kernel selection, looked up in the loaded libraries: a BLAS without it
+/// (reference BLAS, BLIS, MKL, an OpenBLAS built for one CPU) is left alone.
+struct OpenBlasDynamicArch
+{
+  NameFunction corename =
+      reinterpret_cast<NameFunction>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+  // gotoblas_dynamic_init() reads OPENBLAS_CORETYPE and fills the kernel table unless it is set
+  // already; gotoblas_dynamic_quit() unsets it. Both are exported by DYNAMIC_ARCH builds.
+  VoidFunction init = reinterpret_cast<VoidFunction>(dlsym(RTLD_DEFAULT, "gotoblas_dynamic_init"));
+  VoidFunction quit = reinterpret_cast<VoidFunction>(dlsym(RTLD_DEFAULT, "gotoblas_dynamic_quit"));
+  bool available() const { return corename && init && quit; }
+};
+
+/// The best kernel set OpenBLAS 0.3.21 has for the CPU's features, or nullptr.
+const char *kernels_for_this_cpu()
+{
+  __builtin_cpu_init();
+  // OpenBLAS's SkylakeX kernels use AVX-512 F, CD, BW, DQ and VL; Haswell's AVX2 and FMA.
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512vl"))
+    return "SkylakeX";
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    return "Haswell";
+  return nullptr;
+}
+
+BlasKernels found()
+{
+  const OpenBlasDynamicArch openblas;
+  if (!openblas.available())
+    return {};
+  return {openblas.corename(), std::getenv("OPENBLAS_CORETYPE") ? "OPENBLAS_CORETYPE" : "OpenBLAS"};
+}
+
+BlasKernels state;
+bool decided = false;
+} // namespace
+
+BlasKernels use_cpu_blas_kernels()
+{
+  if (decided)
+    return state;
+  decided = true;
+  state = found();
+  const OpenBlasDynamicArch openblas;
+  const char *better = kernels_for_this_cpu();
+  if (state.chosen_by != "OpenBLAS" || strcasecmp(state.kernels.c_str(), "Prescott") != 0 ||
+      !better)
+    return state;
+  // In-process what OPENBLAS_CORETYPE does at load time; the environment is left as it was (the
+  // variable would otherwise reach child processes such as the plotting scripts).
+  setenv("OPENBLAS_CORETYPE", better, 1);
+  openblas.quit();
+  openblas.init();
+  unsetenv("OPENBLAS_CORETYPE");
+  state = {openblas.corename(), "sealfe"};
+  return state;
+}
+
+BlasKernels blas_kernels()
+{
+  return decided ? state : found();
+}
+} // namespace sealfe::numerics
