@@ -23,13 +23,63 @@ namespace sealfe
 namespace
 {
 /// Amesos_Mumps with a solve of several right-hand sides in one MUMPS call (NRHS > 1): Amesos
-/// calls MUMPS once per column of a multivector. It relies on Amesos_Mumps's protected members
-/// (the MUMPS structure MDS), an implementation detail of the Trilinos version it was written for
-/// (Debian 12's Trilinos 13.2): recheck it when Trilinos changes.
+/// calls MUMPS once per column of a multivector; and, on several ranks, repeated numeric
+/// factorisations that refresh the values of the redistributed matrix in place. It relies on
+/// Amesos_Mumps's protected members (the MUMPS structure MDS, the redistributed matrix and its
+/// triplets), an implementation detail of the Trilinos version it was written for (Debian 12's
+/// Trilinos 13.2): recheck it when Trilinos changes.
 class BlockMumps : public Amesos_Mumps
 {
 public:
   using Amesos_Mumps::Amesos_Mumps;
+
+  /// On several ranks Amesos_Mumps gives MUMPS the matrix redistributed over an even split of
+  /// the rows, and it builds that copy anew (a new Epetra_CrsMatrix, an Import, FillComplete)
+  /// twice per numeric factorisation (once itself, once to read the values): 0.3-0.4 s each at
+  /// 5e5 unknowns, a third of what the factorisation costs on two ranks (doc/performance.md
+  /// "MUMPS on several ranks"). A repeated factorisation of a matrix with the same pattern (the
+  /// only kind SparseDirect makes) zeroes the copy it has, adds the matrix into it through the
+  /// same importer and reads the values row by row, in the order of the triplets the symbolic
+  /// analysis read from a copy built the same way: the same values in the same places.
+  int NumericFactorization() override
+  {
+    // (a BlockMumps analyses one pattern: SparseDirect makes a new one for another)
+    if (Comm().NumProc() == 1 || NumNumericFact() == 0 || RedistrMatrix_.is_null() ||
+        !RedistrMatrix_->Filled())
+      return Amesos_Mumps::NumericFactorization();
+    Epetra_CrsMatrix &copy = *RedistrMatrix_;
+    int status = copy.PutScalar(0.0);
+    status += copy.Import(Matrix(), RedistrImporter(), Add);
+    std::size_t count = 0;
+    for (int i = 0; i < copy.NumMyRows() && status == 0; ++i)
+    {
+      int n = 0;
+      double *values = nullptr;
+      status += copy.ExtractMyRowView(i, n, values);
+      if (count + n > Val.size())
+        status = -1;
+      else
+        std::copy(values, values + n, Val.begin() + count);
+      count += n;
+    }
+    if (count != Val.size())
+      status = -1;
+    int failed = status != 0, any_failed = 0;
+    Comm().SumAll(&failed, &any_failed, 1);
+    if (any_failed)
+      return -1;
+    if (Comm().MyPID() < MaxProcs_)
+      MDS.a_loc = Val.data();
+    MDS.job = 2;
+    if (Comm().MyPID() < MaxProcs_)
+      dmumps_c(&MDS);
+    failed = MDS.infog[0] < 0 || MDS.info[0] < 0;
+    Comm().SumAll(&failed, &any_failed, 1);
+    // (Amesos's status flags are private: they stay those of the first factorisation, which
+    // was complete, and a failure here is an error SparseDirect throws on)
+    return any_failed ? -1 : 0;
+  }
+
   /// The n x m column-major block X overwritten by A^-1 X (one rank: the host holds it all).
   int solve_block(double *X, const int n, const int m)
   {

@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <vector>
 
 using namespace sealfe;
@@ -415,4 +417,86 @@ TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
         EXPECT_EQ(x[i], -7.0) << i;
     }
   }
+}
+
+// Repeated MUMPS factorisations of a matrix split among the ranks (ctest
+// sparse_direct_band_on_{2,3}_ranks): from the second on, BlockMumps refreshes the values of
+// Amesos's redistributed copy in place instead of rebuilding it. Each factorisation must solve
+// its own matrix: the normwise backward error |b - A x| / (|A| |x| + |b|) (infinity norms) of a
+// backward-stable LU of this strictly diagonally dominant matrix (no pivot growth) is a few u;
+// 128 u is the bound the JFO polish accepts solves by (JFOSolver's low-rank update). And the
+// answer must be the serial factorisation's to within the forward-error bound of the two
+// backward errors (|A^-1|_inf <= 1 / sigma, Varah 1975). A value put in a wrong place, or a
+// stale one, gives O(1) errors.
+TEST(SparseDirect, RefactorisationOnSeveralRanksSolvesEachNewMatrix)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm),
+                     rank = Utilities::MPI::this_mpi_process(comm);
+  const unsigned int m = 150, N = m * m; // above SparseDirect::multifrontal_limit: MUMPS
+  ASSERT_GE(N, SparseDirect::multifrontal_limit);
+  GridMatrix serial(m);
+  const auto first_row = [&](const unsigned int r) { return r * N / n_ranks; };
+  IndexSet owned(N);
+  owned.add_range(first_row(rank), first_row(rank + 1));
+  DynamicSparsityPattern pattern(N, N, owned);
+  for (const auto i : owned)
+    for (const auto &[j, value] : serial.row(i))
+      pattern.add(i, j);
+  TrilinosWrappers::SparseMatrix A;
+  A.reinit(owned, owned, pattern, comm);
+  TrilinosWrappers::MPI::Vector b(owned, comm), x(owned, comm), r(owned, comm);
+  std::vector<double> b_all(N);
+  for (unsigned int i = 0; i < N; ++i)
+  {
+    b_all[i] = std::cos(0.05 * i) + 0.1 * std::sin(1.3 * i);
+    if (owned.is_element(i))
+      b[i] = b_all[i];
+  }
+  b.compress(VectorOperation::insert);
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  SparseDirect lu;
+  for (const double c : {5.0, 0.5, 40.0})
+  {
+    SCOPED_TRACE("c = " + std::to_string(c));
+    serial.c = c;
+    for (const auto i : owned)
+      for (const auto &[j, value] : serial.row(i))
+        A.set(i, j, value);
+    A.compress(VectorOperation::insert);
+    lu.factorize(A);
+    lu.solve(b, x);
+    A.vmult(r, x);
+    r -= b;
+    const double eta = r.linfty_norm() / (A.linfty_norm() * x.linfty_norm() + b.linfty_norm());
+    EXPECT_LE(eta, 128 * u);
+
+    // the serial factorisation of the same matrix
+    GridMatrix whole(m);
+    whole.c = c;
+    for (unsigned int i = 0; i < N; ++i)
+      for (const auto &[j, value] : whole.row(i))
+        whole.A.set(i, j, value);
+    whole.A.compress(VectorOperation::insert);
+    SparseDirect serial_lu;
+    serial_lu.factorize(whole.A);
+    const IndexSet all = complete_index_set(N);
+    TrilinosWrappers::MPI::Vector bs(all, MPI_COMM_SELF), xs(all, MPI_COMM_SELF);
+    for (unsigned int i = 0; i < N; ++i)
+      bs[i] = b_all[i];
+    serial_lu.solve(bs, xs);
+    std::vector<double> y(N);
+    for (unsigned int i = 0; i < N; ++i)
+      y[i] = xs[i];
+    const double eta_serial = backward_error(whole.A, y, b_all);
+    // x on every rank (the owned parts gathered) for the comparison
+    std::vector<double> mine(N, 0.0), x_all(N, 0.0);
+    for (const auto i : owned)
+      mine[i] = x[i];
+    MPI_Allreduce(mine.data(), x_all.data(), int(N), MPI_DOUBLE, MPI_SUM, comm);
+    const auto [difference, bound] = two_solve_difference(whole, x_all, eta, y, eta_serial, b_all);
+    EXPECT_LE(difference, bound);
+    EXPECT_GT(bound, 0.0);
+  }
+  EXPECT_EQ(lu.numeric_only(), 2u); // the 2nd and 3rd kept the analysis
 }
