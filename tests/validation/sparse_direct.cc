@@ -140,10 +140,36 @@ struct GridMatrix
         pattern.add(i, j);
     const IndexSet all = complete_index_set(N);
     A.reinit(all, all, pattern, MPI_COMM_SELF);
-    for (unsigned int i = 0; i < N; ++i)
+    set_rows(A, all);
+  }
+  /// The values of the rows `rows` (with the present c and sigma) into B.
+  void set_rows(TrilinosWrappers::SparseMatrix &B, const IndexSet &rows) const
+  {
+    for (const auto i : rows)
       for (const auto &[j, value] : row(i))
-        A.set(i, j, value);
-    A.compress(VectorOperation::insert);
+        B.set(i, j, value);
+    B.compress(VectorOperation::insert);
+  }
+  /// The first row of rank r of n_ranks when the rows are split into contiguous ranges.
+  unsigned int first_row(const unsigned int r, const unsigned int n_ranks) const
+  {
+    return r * m * m / n_ranks;
+  }
+  /// This matrix with its rows split among the ranks of `comm` (contiguous ranges, rank by
+  /// rank) into B: pattern and values; returns the rows this rank owns.
+  IndexSet split(TrilinosWrappers::SparseMatrix &B, const MPI_Comm comm) const
+  {
+    const unsigned int N = m * m, n_ranks = Utilities::MPI::n_mpi_processes(comm),
+                       rank = Utilities::MPI::this_mpi_process(comm);
+    IndexSet owned(N);
+    owned.add_range(first_row(rank, n_ranks), first_row(rank + 1, n_ranks));
+    DynamicSparsityPattern pattern(N, N, owned);
+    for (const auto i : owned)
+      for (const auto &[j, value] : row(i))
+        pattern.add(i, j);
+    B.reinit(owned, owned, pattern, comm);
+    set_rows(B, owned);
+    return owned;
   }
   std::vector<std::pair<unsigned int, double>> row(const unsigned int i) const
   {
@@ -338,24 +364,13 @@ TEST(SparseDirect, LowRankUpdateRefusesASingularChange)
 TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
 {
   const MPI_Comm comm = MPI_COMM_WORLD;
-  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm),
-                     rank = Utilities::MPI::this_mpi_process(comm);
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
   const unsigned int m = 30, N = m * m;
   const GridMatrix serial(m); // on MPI_COMM_SELF, whole on every rank
   // contiguous row ranges, rank by rank
-  const auto first_row = [&](const unsigned int r) { return r * N / n_ranks; };
-  IndexSet owned(N);
-  owned.add_range(first_row(rank), first_row(rank + 1));
-  DynamicSparsityPattern pattern(N, N, owned);
-  for (const auto i : owned)
-    for (const auto &[j, value] : serial.row(i))
-      pattern.add(i, j);
+  const auto first_row = [&](const unsigned int r) { return serial.first_row(r, n_ranks); };
   TrilinosWrappers::SparseMatrix A;
-  A.reinit(owned, owned, pattern, comm);
-  for (const auto i : owned)
-    for (const auto &[j, value] : serial.row(i))
-      A.set(i, j, value);
-  A.compress(VectorOperation::insert);
+  const IndexSet owned = serial.split(A, comm);
 
   std::vector<unsigned int> boundary_seeds{5 * m + 3, N - 2 * m - 7};
   for (unsigned int r = 1; r < n_ranks; ++r)
@@ -431,20 +446,11 @@ TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
 TEST(SparseDirect, RefactorisationOnSeveralRanksSolvesEachNewMatrix)
 {
   const MPI_Comm comm = MPI_COMM_WORLD;
-  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm),
-                     rank = Utilities::MPI::this_mpi_process(comm);
   const unsigned int m = 150, N = m * m; // above SparseDirect::multifrontal_limit: MUMPS
   ASSERT_GE(N, SparseDirect::multifrontal_limit);
   GridMatrix serial(m);
-  const auto first_row = [&](const unsigned int r) { return r * N / n_ranks; };
-  IndexSet owned(N);
-  owned.add_range(first_row(rank), first_row(rank + 1));
-  DynamicSparsityPattern pattern(N, N, owned);
-  for (const auto i : owned)
-    for (const auto &[j, value] : serial.row(i))
-      pattern.add(i, j);
   TrilinosWrappers::SparseMatrix A;
-  A.reinit(owned, owned, pattern, comm);
+  const IndexSet owned = serial.split(A, comm);
   TrilinosWrappers::MPI::Vector b(owned, comm), x(owned, comm), r(owned, comm);
   std::vector<double> b_all(N);
   for (unsigned int i = 0; i < N; ++i)
@@ -460,10 +466,7 @@ TEST(SparseDirect, RefactorisationOnSeveralRanksSolvesEachNewMatrix)
   {
     SCOPED_TRACE("c = " + std::to_string(c));
     serial.c = c;
-    for (const auto i : owned)
-      for (const auto &[j, value] : serial.row(i))
-        A.set(i, j, value);
-    A.compress(VectorOperation::insert);
+    serial.set_rows(A, owned);
     lu.factorize(A);
     lu.solve(b, x);
     A.vmult(r, x);
@@ -474,10 +477,7 @@ TEST(SparseDirect, RefactorisationOnSeveralRanksSolvesEachNewMatrix)
     // the serial factorisation of the same matrix
     GridMatrix whole(m);
     whole.c = c;
-    for (unsigned int i = 0; i < N; ++i)
-      for (const auto &[j, value] : whole.row(i))
-        whole.A.set(i, j, value);
-    whole.A.compress(VectorOperation::insert);
+    whole.set_rows(whole.A, complete_index_set(N));
     SparseDirect serial_lu;
     serial_lu.factorize(whole.A);
     const IndexSet all = complete_index_set(N);
