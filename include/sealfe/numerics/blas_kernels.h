@@ -20,12 +20,13 @@ struct BlasKernels
 
 /// OpenBLAS built with DYNAMIC_ARCH (Debian's) picks its kernels from the CPU model when it is
 /// loaded. A model newer than the release (OpenBLAS 0.3.21 in Debian 12 on Intel family 6 model
-/// 207) gets the SSE3 fallback, which makes MUMPS's numeric factorisations about twice as slow
-/// (doc/performance.md "BLAS kernels"). If the user has not set OPENBLAS_CORETYPE and OpenBLAS
-/// took that fallback on a CPU whose features (checked with the OS's support, as the compiler's
-/// __builtin_cpu_supports does) allow AVX-512 or AVX2 kernels, re-initialise OpenBLAS's kernel
-/// table with those (the documented OPENBLAS_CORETYPE choice, made in-process). Call first in
-/// main(), before any BLAS call and before other threads start; calling it again changes nothing.
+/// 207) gets the SSE3 fallback, which made MUMPS's factorisations of the JFO Newton systems
+/// 1.15-1.9x slower there (doc/performance.md "BLAS kernels"). If the user has not set
+/// OPENBLAS_CORETYPE and OpenBLAS took that fallback on a CPU whose features allow AVX-512 or
+/// AVX2 kernels (__builtin_cpu_supports, which also checks that the OS saves those registers),
+/// re-initialise OpenBLAS's kernel table with those (the documented OPENBLAS_CORETYPE choice, made
+/// in-process). Call first in main(), before any BLAS call and before other threads start; calling
+/// it again changes nothing.
 BlasKernels use_cpu_blas_kernels();
 
 /// The state after the last use_cpu_blas_kernels() (what it found if it was never called).
