@@ -5,6 +5,7 @@
 #include <sealfe/io/interrupt.h>
 #include <sealfe/io/output.h>
 #include <sealfe/io/python_plot.h>
+#include <sealfe/numerics/gather.h>
 #include <sealfe/numerics/number_lists.h>
 
 #include <deal.II/base/utilities.h>
@@ -156,25 +157,13 @@ std::string row(const unsigned int i, const SweepPlan &plan, const CoefficientRe
   return line + "," + std::to_string(result->dofs) + ",ok";
 }
 
-/// Concatenate every rank's text on rank 0 (in rank order).
+/// Every rank's text, concatenated in rank order (numerics::gather_on_every_rank: the text is a
+/// few rows per rank, so every rank may as well receive it).
 std::string gather_text(const std::string &mine, MPI_Comm comm)
 {
-  const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
-  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
-  int size = static_cast<int>(mine.size());
-  std::vector<int> sizes(n), offsets(n, 0);
-  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm);
-  int total = 0;
-  if (root)
-    for (unsigned int r = 0; r < n; ++r)
-    {
-      offsets[r] = total;
-      total += sizes[r];
-    }
-  std::string all(root ? total : 0, '\0');
-  MPI_Gatherv(mine.data(), size, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0,
-              comm);
-  return all;
+  const std::vector<char> all =
+      numerics::gather_on_every_rank(comm, std::vector<char>(mine.begin(), mine.end()));
+  return std::string(all.begin(), all.end());
 }
 } // namespace
 

@@ -1,4 +1,5 @@
 #include <sealfe/film/sparse_direct.h>
+#include <sealfe/numerics/gather.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -293,37 +294,6 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   return LowRankSolve::solved;
 }
 
-namespace
-{
-/// Every rank's `mine`, on every rank, one after the other in rank order (one MPI_Allgatherv;
-/// deal.II's all_gather packs and compresses, which is measurable at a band's 1e5 entries).
-template <typename T>
-std::vector<T> gather_on_every_rank(const MPI_Comm comm, const std::vector<T> &mine)
-{
-  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-  std::vector<int> counts(n_ranks), offsets(n_ranks + 1, 0);
-  AssertThrow(mine.size() <= std::size_t(std::numeric_limits<int>::max()),
-              dealii::ExcMessage("band solve: more entries on one rank than MPI counts"));
-  const int my_count = static_cast<int>(mine.size());
-  int ierr = MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  AssertThrowMPI(ierr);
-  for (unsigned int rank = 0; rank < n_ranks; ++rank)
-  {
-    AssertThrow(std::size_t(offsets[rank]) + counts[rank] <=
-                    std::size_t(std::numeric_limits<int>::max()),
-                dealii::ExcMessage("band solve: more entries than MPI counts"));
-    offsets[rank + 1] = offsets[rank] + counts[rank];
-  }
-  std::vector<T> all(offsets.back());
-  const MPI_Datatype type =
-      dealii::Utilities::MPI::internal::MPIDataTypes::mpi_type_id(mine.data());
-  ierr = MPI_Allgatherv(mine.data(), my_count, type, all.data(), counts.data(), offsets.data(),
-                        type, comm);
-  AssertThrowMPI(ierr);
-  return all;
-}
-} // namespace
-
 std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                                 const std::vector<bool> &seeds, const unsigned int layers)
 {
@@ -415,8 +385,8 @@ void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
   }
   // On several ranks every rank gathers the whole subsystem and solves it (the ranks would wait
   // for one solver otherwise): small, a band of a few graph layers around the flipped nodes.
-  const std::vector<int> integers = gather_on_every_rank(comm, my_integers);
-  const std::vector<double> numbers = gather_on_every_rank(comm, my_values);
+  const std::vector<int> integers = numerics::gather_on_every_rank(comm, my_integers);
+  const std::vector<double> numbers = numerics::gather_on_every_rank(comm, my_values);
 
   dealii::DynamicSparsityPattern pattern(n, n);
   unsigned int rows = 0;
