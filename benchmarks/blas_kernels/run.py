@@ -13,10 +13,13 @@ the CPU's; tilted VG seal (benchmarks/reynolds_speed/case.prm) and prm/wavy_jfo.
 Writes blas_kernels.csv (minimum over the repeats) and blas_kernels.png (factorisation time and
 JFO / full-film ratio, before and after) beside this file; --plot-only redraws the PNG.
 """
-import argparse, csv, json, os, shutil, subprocess, tempfile, time
+import argparse, csv, os, sys, tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(REPO, "benchmarks", "scaling"))
+import run as scaling  # noqa: E402  (benchmarks/scaling/run.py: one timed `sealfe solve`)
+
 TILTED = open(os.path.join(REPO, "benchmarks", "reynolds_speed", "case.prm")).read()
 WAVY = open(os.path.join(REPO, "prm", "wavy_jfo.prm")).read()
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
@@ -24,38 +27,13 @@ ENV.pop("OPENBLAS_CORETYPE", None)
 
 
 def run(sealfe, work, base, nr, nt, model, kernels, ranks=1):
-    out = tempfile.mkdtemp(dir=work)
-    path = out + ".prm"
-    open(path, "w").write(base + f"""
-set Output directory = {out}
-subsection Discretization
-  set Polynomial degree = 2
-  set Radial cells = {nr}
-  set Circumferential cells = {nt}
-  set Global refinements = 0
-  set Linear solver = auto
-  set Error estimate = false
-end
-subsection Cavitation
-  set Model = {model}
-end
-subsection Output
-  set Write fields = false
-end
-""")
+    """benchmarks/scaling's run, degree 2, `auto`, with the fallback kernels if asked."""
     env = dict(ENV, OPENBLAS_CORETYPE="Prescott") if kernels == "fallback" else ENV
-    cmd = (["mpirun", "--oversubscribe", "-np", str(ranks)] if ranks > 1 else []) + [sealfe, "solve", path]
-    t = time.perf_counter()
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=env)
-    wall = time.perf_counter() - t
-    if r.returncode:
-        raise SystemExit(f"{cmd}: {r.stderr.strip()[-300:]}")
-    s = json.load(open(os.path.join(out, "summary.json")))
-    shutil.rmtree(out, ignore_errors=True)
-    st = s["stage_wall_time"]
-    return {"dofs": s["dofs"], "process": wall, "inprocess": s["wall_time"],
-            "factorisation": st.get("linear solver setup", 0.0),
-            "kernels": s["blas_kernels"]["kernels"], "force_z": s["force_z"]}
+    r = scaling.run(sealfe, work, 2, nr, nt, "auto", model, base, ranks, env)
+    if "error" in r:
+        raise SystemExit(f"{model} {nr} x {nt} on {ranks} ranks: {r['error']}")
+    return {"dofs": r["dofs"], "process": r["process_wall"], "inprocess": r["inprocess"],
+            "factorisation": r["linear_setup"], "kernels": r["blas_kernels"], "force_z": r["force_z"]}
 
 
 def plot(rows):

@@ -34,7 +34,9 @@ MPIRUN = ["mpirun", "--oversubscribe", "-np", "2"]
 MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
-def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, ranks=1):
+def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, ranks=1, env=None):
+    """One `sealfe solve` of `base` on an nr x nt mesh of degree k (no error estimate, no
+    fields), timed from outside; `env` replaces the environment (default MPI_ENV)."""
     out = tempfile.mkdtemp(dir=work)
     prm = base + f"""
 set Output directory = {out}
@@ -57,7 +59,7 @@ end
     open(path, "w").write(prm)
     t = time.perf_counter()
     cmd = (MPIRUN if ranks > 1 else []) + [sealfe, "solve", path]
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=MPI_ENV)
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=env or MPI_ENV)
     wall = time.perf_counter() - t
     if r.returncode:
         return {"error": r.stderr.strip()[-300:], "process_wall": wall}
@@ -77,7 +79,8 @@ end
             "active_set_rounds": s.get("cavitation", {}).get("active_set_rounds"),
             "coarse_factorizations": s.get("cavitation", {}).get("coarse_level_factorizations"),
             "band_factorizations": s.get("cavitation", {}).get("band_factorizations"),
-            "force_z": s["force_z"], "moment_x": s["moment_x"]}
+            "force_z": s["force_z"], "moment_x": s["moment_x"],
+            "blas_kernels": s.get("blas_kernels", {}).get("kernels")}
 
 
 def fit_exponent(rows):

@@ -69,11 +69,12 @@ public:
     Comm().SumAll(&failed, &any_failed, 1);
     if (any_failed)
       return -1;
-    if (Comm().MyPID() < MaxProcs_)
-      MDS.a_loc = Val.data();
     MDS.job = 2;
     if (Comm().MyPID() < MaxProcs_)
+    {
+      MDS.a_loc = Val.data();
       dmumps_c(&MDS);
+    }
     failed = MDS.infog[0] < 0 || MDS.info[0] < 0;
     Comm().SumAll(&failed, &any_failed, 1);
     // (Amesos's status flags are private: they stay those of the first factorisation, which

@@ -39,9 +39,8 @@ const char *kernels_for_this_cpu()
   return nullptr;
 }
 
-BlasKernels found()
+BlasKernels found(const OpenBlasDynamicArch &openblas)
 {
-  const OpenBlasDynamicArch openblas;
   if (!openblas.available())
     return {};
   return {openblas.corename(), std::getenv("OPENBLAS_CORETYPE") ? "OPENBLAS_CORETYPE" : "OpenBLAS"};
@@ -56,8 +55,8 @@ BlasKernels use_cpu_blas_kernels()
   if (decided)
     return state;
   decided = true;
-  state = found();
   const OpenBlasDynamicArch openblas;
+  state = found(openblas);
   const char *better = kernels_for_this_cpu();
   if (state.chosen_by != "OpenBLAS" || strcasecmp(state.kernels.c_str(), "Prescott") != 0 ||
       !better)
@@ -74,6 +73,6 @@ BlasKernels use_cpu_blas_kernels()
 
 BlasKernels blas_kernels()
 {
-  return decided ? state : found();
+  return decided ? state : found(OpenBlasDynamicArch());
 }
 } // namespace sealfe::numerics
