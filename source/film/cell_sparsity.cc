@@ -33,6 +33,47 @@ std::vector<types::global_dof_index> rank_ranges(const IndexSet &owned, MPI_Comm
   return first;
 }
 
+/// The rows of a matrix assembled over cells, one after the other: for each dof t < n_dofs
+/// (`cell_dofs` numbered in 0 .. n_dofs - 1, `m` per cell), the unconstrained dofs of the cells
+/// around t, each once, in the order the cells meet them, or t alone where t is constrained;
+/// `take_row(t, row)` receives each. Shared by the one-rank and several-rank patterns.
+template <class TakeRow>
+void for_each_row_of_cells(const std::vector<unsigned int> &cell_dofs, const unsigned int n_dofs,
+                           const unsigned int m, const std::vector<char> &constrained,
+                           TakeRow &&take_row)
+{
+  const std::size_t n_cells = cell_dofs.size() / m;
+  // the cells around each dof (compressed rows)
+  std::vector<unsigned int> first_cell(n_dofs + 1, 0);
+  for (const unsigned int t : cell_dofs)
+    ++first_cell[t + 1];
+  std::partial_sum(first_cell.begin(), first_cell.end(), first_cell.begin());
+  std::vector<unsigned int> around(cell_dofs.size()),
+      next(first_cell.begin(), first_cell.end() - 1);
+  for (std::size_t c = 0; c < n_cells; ++c)
+    for (unsigned int k = 0; k < m; ++k)
+      around[next[cell_dofs[c * m + k]]++] = c;
+  std::vector<unsigned int> row, mark(n_dofs, numbers::invalid_unsigned_int);
+  for (unsigned int t = 0; t < n_dofs; ++t)
+  {
+    row.clear();
+    if (constrained[t])
+      row.push_back(t);
+    else
+      for (unsigned int p = first_cell[t]; p < first_cell[t + 1]; ++p)
+      {
+        const unsigned int *dofs = &cell_dofs[std::size_t(around[p]) * m];
+        for (unsigned int k = 0; k < m; ++k)
+          if (!constrained[dofs[k]] && mark[dofs[k]] != t)
+          {
+            mark[dofs[k]] = t;
+            row.push_back(dofs[k]);
+          }
+      }
+    take_row(t, row);
+  }
+}
+
 /// CellSparsity::reinit on several ranks. Each rank makes the rows of the dofs of its own cells
 /// (owned dofs and ghosts), sends the ghosts' rows to their owners and merges the rows it
 /// receives: the rows DoFTools' (MGTools') pattern gets from SparsityTools::
@@ -51,7 +92,6 @@ void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &
   const auto is_owned = [&](const types::global_dof_index d) { return d >= begin && d < end; };
   const auto owner = [&](const unsigned int d)
   { return unsigned(std::upper_bound(first.begin(), first.end(), d) - first.begin()) - 1; };
-  const std::size_t n_cells = cell_dofs.size() / m;
 
   // the dofs by local (touched) index: an owned dof d at d - begin, the others (ghosts) after
   // them in increasing number
@@ -81,53 +121,28 @@ void reinit_distributed(TrilinosWrappers::SparseMatrix &matrix, const IndexSet &
         constrained[ghost_index(line.index)] = 1;
     }
 
-  // the cells around each dof (compressed rows)
-  std::vector<unsigned int> first_cell(n_touched + 1, 0);
-  for (const unsigned int t : touched)
-    ++first_cell[t + 1];
-  std::partial_sum(first_cell.begin(), first_cell.end(), first_cell.begin());
-  std::vector<unsigned int> around(touched.size()), next(first_cell.begin(), first_cell.end() - 1);
-  for (std::size_t c = 0; c < n_cells; ++c)
-    for (unsigned int k = 0; k < m; ++k)
-      around[next[touched[c * m + k]]++] = c;
-
-  // row t: the (unconstrained) dofs of those cells, each once; an owned row kept by local
-  // index, a ghost's row packed for its owner as (dof, length, dofs...)
+  // row t: an owned row kept by local index, a ghost's row packed for its owner as
+  // (dof, length, dofs...)
   std::vector<int> length(n_owned);
-  std::vector<unsigned int> columns, row, mark(n_touched, numbers::invalid_unsigned_int);
+  std::vector<unsigned int> columns;
   columns.reserve(std::size_t(n_owned) * 2 * m);
   std::vector<std::vector<unsigned int>> send(n_ranks);
-  for (unsigned int t = 0; t < n_touched; ++t)
-  {
-    row.clear();
-    if (constrained[t])
-      row.push_back(t);
-    else
-      for (unsigned int p = first_cell[t]; p < first_cell[t + 1]; ++p)
-      {
-        const unsigned int *dofs = &touched[std::size_t(around[p]) * m];
-        for (unsigned int k = 0; k < m; ++k)
-          if (!constrained[dofs[k]] && mark[dofs[k]] != t)
-          {
-            mark[dofs[k]] = t;
-            row.push_back(dofs[k]);
-          }
-      }
-    if (t < n_owned)
-    {
-      length[t] = int(row.size());
-      columns.insert(columns.end(), row.begin(), row.end());
-    }
-    else
-    {
-      const unsigned int dof = ghosts[t - n_owned];
-      auto &buffer = send[owner(dof)];
-      buffer.push_back(dof);
-      buffer.push_back(row.size());
-      for (const unsigned int c : row)
-        buffer.push_back(c < n_owned ? begin + c : ghosts[c - n_owned]);
-    }
-  }
+  for_each_row_of_cells(touched, n_touched, m, constrained,
+                        [&](const unsigned int t, const std::vector<unsigned int> &row)
+                        {
+                          if (t < n_owned)
+                          {
+                            length[t] = int(row.size());
+                            columns.insert(columns.end(), row.begin(), row.end());
+                            return;
+                          }
+                          const unsigned int dof = ghosts[t - n_owned];
+                          auto &buffer = send[owner(dof)];
+                          buffer.push_back(dof);
+                          buffer.push_back(row.size());
+                          for (const unsigned int c : row)
+                            buffer.push_back(c < n_owned ? begin + c : ghosts[c - n_owned]);
+                        });
 
   // the ghosts' rows to their owners
   std::vector<int> send_counts(n_ranks), receive_counts(n_ranks), send_offsets(n_ranks + 1, 0),
@@ -297,48 +312,23 @@ void CellSparsity::reinit(TrilinosWrappers::SparseMatrix &matrix, const IndexSet
     return;
   }
   const unsigned int n = owned.n_elements(), m = dofs_per_cell;
-  const std::size_t n_cells = cell_dofs.size() / m;
+  for (const unsigned int d : cell_dofs)
+    AssertThrow(d < n, ExcMessage("CellSparsity: a cell's dof is not an owned one"));
   std::vector<char> constrained(n, 0);
   if (!keep_constrained_dofs)
     for (const auto &line : constraints.get_lines())
       if (line.index < n)
         constrained[line.index] = 1;
-  // the cells around each dof (compressed rows)
-  std::vector<unsigned int> first(n + 1, 0);
-  for (const unsigned int d : cell_dofs)
-  {
-    AssertThrow(d < n, ExcMessage("CellSparsity: a cell's dof is not an owned one"));
-    ++first[d + 1];
-  }
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<unsigned int> around(cell_dofs.size()), next(first.begin(), first.end() - 1);
-  for (std::size_t c = 0; c < n_cells; ++c)
-    for (unsigned int k = 0; k < m; ++k)
-      around[next[cell_dofs[c * m + k]]++] = c;
-  // row i: the (unconstrained) dofs of those cells, each once (marked by the row), sorted
-  std::vector<int> length(n), columns, row;
+  // row i: the (unconstrained) dofs of the cells around i, each once, sorted
+  std::vector<int> length(n), columns;
   columns.reserve(std::size_t(n) * 2 * m);
-  std::vector<unsigned int> mark(n, numbers::invalid_unsigned_int);
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    row.clear();
-    if (constrained[i])
-      row.push_back(int(i));
-    else
-      for (unsigned int p = first[i]; p < first[i + 1]; ++p)
-      {
-        const unsigned int *dofs = &cell_dofs[std::size_t(around[p]) * m];
-        for (unsigned int k = 0; k < m; ++k)
-          if (!constrained[dofs[k]] && mark[dofs[k]] != i)
-          {
-            mark[dofs[k]] = i;
-            row.push_back(int(dofs[k]));
-          }
-      }
-    std::sort(row.begin(), row.end());
-    length[i] = int(row.size());
-    columns.insert(columns.end(), row.begin(), row.end());
-  }
+  for_each_row_of_cells(cell_dofs, n, m, constrained,
+                        [&](const unsigned int i, std::vector<unsigned int> &row)
+                        {
+                          std::sort(row.begin(), row.end());
+                          length[i] = int(row.size());
+                          columns.insert(columns.end(), row.begin(), row.end());
+                        });
   // the graph by local index (column map = row map: local index = dof number), then the matrix
   const Epetra_Map map = owned.make_trilinos_map(comm, false);
   Epetra_CrsGraph graph(Copy, map, map, length.data(), true);
