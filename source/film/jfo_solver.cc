@@ -818,18 +818,12 @@ void JFOSolver::probe_krylov(const VectorType &set_a, const VectorType &set_v,
     full_film[i] = is_constrained[i] || pa[i] >= pv[i];
     base_value[i] = pa[i] >= pv[i] ? pa[i] : pv[i];
   }
-  FEValues<2> fe_values(*s.mapping, *s.fe, Quadrature<2>(s.fe->get_unit_support_points()),
-                        update_quadrature_points);
-  std::vector<types::global_dof_index> dofs(s.fe->n_dofs_per_cell());
-  for (const auto &cell : s.dof_handler.active_cell_iterators())
+  // (one rank: owned index = dof number)
+  const std::vector<Point<2>> support = s.owned_support_points();
+  for (std::size_t i = 0; i < n; ++i)
   {
-    fe_values.reinit(cell);
-    cell->get_dof_indices(dofs);
-    for (unsigned int i = 0; i < dofs.size(); ++i)
-    {
-      x[dofs[i]] = fe_values.quadrature_point(i)[0];
-      y[dofs[i]] = fe_values.quadrature_point(i)[1];
-    }
+    x[i] = support[i][0];
+    y[i] = support[i][1];
   }
   probe_active_set_round(s.system_matrix, newton_rhs, w, full_film, is_constrained, base_value, x,
                          y, s.polynomial_degree, flow_scale, direct_seconds, round, variants,

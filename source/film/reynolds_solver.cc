@@ -293,27 +293,16 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
   if (may_use_amg && amg_support_x.empty())
   {
     // The support points of the locally owned dofs, in the order of locally_owned_dofs (the
-    // rows of this rank), from one pass over the cells (DoFTools::map_dofs_to_support_points
-    // fills a std::map: 0.4 s of the AMG set-up at 1e6 dofs).
-    const unsigned int n_owned = locally_owned_dofs.n_elements();
-    amg_support_x.assign(n_owned, 0.0);
-    amg_support_y.assign(n_owned, 0.0);
-    FEValues<2> fe_values(*mapping, *fe, Quadrature<2>(fe->get_unit_support_points()),
-                          update_quadrature_points);
-    std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-      {
-        fe_values.reinit(cell);
-        cell->get_dof_indices(dofs);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          if (locally_owned_dofs.is_element(dofs[i]))
-          {
-            const auto k = locally_owned_dofs.index_within_set(dofs[i]);
-            amg_support_x[k] = fe_values.quadrature_point(i)[0];
-            amg_support_y[k] = fe_values.quadrature_point(i)[1];
-          }
-      }
+    // rows of this rank; DoFTools::map_dofs_to_support_points fills a std::map: 0.4 s of the
+    // AMG set-up at 1e6 dofs).
+    const std::vector<Point<2>> support = owned_support_points();
+    amg_support_x.resize(support.size());
+    amg_support_y.resize(support.size());
+    for (std::size_t k = 0; k < support.size(); ++k)
+    {
+      amg_support_x[k] = support[k][0];
+      amg_support_y[k] = support[k][1];
+    }
   }
   linear_system_solver.prepare(system_matrix, symmetric, linear_solver, polynomial_degree,
                                solver_tolerance, amg_support_x, amg_support_y, newton_sequence,

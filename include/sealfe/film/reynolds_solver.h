@@ -256,6 +256,10 @@ private:
   bool coarse_values_on_polar_grid(const std::vector<dealii::Point<2>> &points,
                                    std::vector<double> &pressure,
                                    std::vector<double> &void_fraction) const;
+  /// The support points of the locally owned dofs by owned index, as
+  /// DoFTools::map_dofs_to_support_points computes them (the mapped unit support points of
+  /// every cell that is not artificial, a later cell overwriting) without its std::map.
+  std::vector<dealii::Point<2>> owned_support_points() const;
   double streamline_tau(const dealii::DoFHandler<2>::active_cell_iterator &cell) const;
   FilmLoads compute_loads() const;
 
