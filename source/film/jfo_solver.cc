@@ -736,21 +736,17 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
 {
   // The Jacobian of a fixed set takes column j from P A where node j keeps its pressure, else
   // from G, so that of the set (set_a, set_v) is the factorised one plus a rank-k term, k the
-  // nodes whose set differs: A1 = A0 + U E^T with U(:, d) = +-(P A - G)(:, j_d). A block solve
-  // of k + 1 columns with A0's factors (one block solve: MUMPS in one call, KLU as a
-  // multivector) and a k x k system cost less than a new factorisation for small k
-  // (doc/performance.md, Session 11). The accepted round (no flips) may be one of these:
-  // solve_column_update checks the backward error of A1's true residual <= 128 u, else the round
-  // factorises; the converged state is verified by the nonlinear residual.
+  // nodes whose set differs: A1 = A0 + U E^T with U(:, d) = +-(P A - G)(:, j_d). With A0's
+  // factors, two solves and the k x k entries E^T A0^-1 U (MUMPS: selected entries of A0^-1;
+  // KLU: a block solve of k + 1 columns) and a k x k system cost less than a new factorisation
+  // for small k (doc/performance.md, Sessions 11 and 18). The accepted round (no flips) may be one
+  // of these: solve_column_update checks the backward error of A1's true residual <= 128 u, else
+  // the round factorises; the converged state is verified by the nonlinear residual.
   SparseDirect *lu = s.linear_system_solver.factorization();
   if (factored_keep_pressure.empty() || !lu || row_gid.empty() ||
       s.linear_system_solver.statistics().factorizations != factored_count)
     return false;
-  // Above low_rank_max_dofs the block solve costs as much as the factorisation it replaces
-  // (measured at 5.3e5 dofs, doc/performance.md)
   const std::size_t n = s.dof_handler.n_dofs();
-  if (n > low_rank_max_dofs)
-    return false;
   const double *pa = plain_values(set_a, n), *pv = plain_values(set_v, n),
                *b = plain_values(newton_rhs, n);
   double *x = const_cast<double *>(plain_values(w, n));
@@ -767,7 +763,7 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
       columns.push_back(j);
     }
   TimerOutput::Scope timer_scope(s.timer, "jfo low-rank update");
-  std::vector<double> U(n * columns.size(), 0.0);
+  std::vector<SparseColumn> U(columns.size());
   const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
   for_each_row(M,
                [&](const int row, const int entries, const double *, const int *row_columns,
@@ -779,7 +775,8 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
                    if (position[j] >= 0)
                    {
                      const double difference = global_PA[first + e] - global_G[first + e];
-                     U[position[j] * n + row_gid[row]] = pa[j] >= pv[j] ? difference : -difference;
+                     U[position[j]].emplace_back(row_gid[row],
+                                                 pa[j] >= pv[j] ? difference : -difference);
                    }
                  }
                });
@@ -788,7 +785,7 @@ bool JFOSolver::low_rank_solve(const VectorType &set_a, const VectorType &set_v)
   // a margin over the round-off of a backward-stable solve (the factorised rounds' solves measure
   // 7e-19..4e-17, the updates 4e-19..4e-17 on the tilted seal at 3.3e4 and 1.3e5 dofs)
   double rcond, backward_error;
-  const LowRankSolve result = solve_column_update(*lu, s.system_matrix, columns, std::move(U), b, x,
+  const LowRankSolve result = solve_column_update(*lu, s.system_matrix, columns, U, b, x,
                                                   std::sqrt(std::numeric_limits<double>::epsilon()),
                                                   0x1p-46, rcond, backward_error);
   if (result != LowRankSolve::solved)

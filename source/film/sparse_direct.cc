@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -80,6 +81,51 @@ public:
     // (Amesos's status flags are private: they stay those of the first factorisation, which
     // was complete, and a failure here is an error SparseDirect throws on)
     return any_failed ? -1 : 0;
+  }
+
+  /// values[c * rows.size() + p] = (A^-1)(rows[p], columns[c]), columns ascending (one rank).
+  int inverse_entries(const std::vector<unsigned int> &rows,
+                      const std::vector<unsigned int> &columns, std::vector<double> &values)
+  {
+    // the requested entries as a sparse n x n right-hand side in compressed columns (1-based):
+    // every column of the matrix, those not requested empty; the values come back in place
+    const int n = MDS.n;
+    std::vector<int> column_start(n + 1), entry_row;
+    entry_row.reserve(rows.size() * columns.size());
+    std::size_t next = 0;
+    for (int j = 0; j < n; ++j)
+    {
+      column_start[j] = int(entry_row.size()) + 1;
+      if (next < columns.size() && columns[next] == unsigned(j))
+      {
+        for (const unsigned int r : rows)
+          entry_row.push_back(int(r) + 1);
+        ++next;
+      }
+    }
+    column_start[n] = int(entry_row.size()) + 1;
+    if (next != columns.size())
+      return -1; // columns not ascending, repeated or out of range
+    values.assign(entry_row.size(), 0.0);
+    const auto saved = MDS;
+    MDS.icntl[29] = 1;
+    MDS.nz_rhs = int(entry_row.size());
+    MDS.nrhs = n;
+    MDS.lrhs = n;
+    MDS.irhs_ptr = column_start.data();
+    MDS.irhs_sparse = entry_row.data();
+    MDS.rhs_sparse = values.data();
+    MDS.job = 3;
+    dmumps_c(&MDS);
+    const int info = MDS.info[0];
+    MDS.icntl[29] = saved.icntl[29];
+    MDS.nz_rhs = saved.nz_rhs;
+    MDS.nrhs = saved.nrhs;
+    MDS.lrhs = saved.lrhs;
+    MDS.irhs_ptr = saved.irhs_ptr;
+    MDS.irhs_sparse = saved.irhs_sparse;
+    MDS.rhs_sparse = saved.rhs_sparse;
+    return info;
   }
 
   /// The n x m column-major block X overwritten by A^-1 X (one rank: the host holds it all).
@@ -190,25 +236,83 @@ void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
     throw std::runtime_error(std::string("Reynolds solver: ") + package + " solve failed");
 }
 
+bool SparseDirect::inverse_entries(const std::vector<unsigned int> &rows,
+                                   const std::vector<unsigned int> &columns,
+                                   std::vector<double> &values)
+{
+  auto *mumps = dynamic_cast<BlockMumps *>(solver.get());
+  const Epetra_RowMatrix &A = *dynamic_cast<const Epetra_RowMatrix *>(problem->GetOperator());
+  if (!mumps || A.Comm().NumProc() != 1)
+    return false;
+  // MUMPS takes the columns in order: sort them, and put the values back in the caller's order
+  std::vector<unsigned int> order(columns.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](unsigned a, unsigned b) { return columns[a] < columns[b]; });
+  std::vector<unsigned int> sorted(columns.size());
+  for (std::size_t c = 0; c < order.size(); ++c)
+    sorted[c] = columns[order[c]];
+  std::vector<double> sorted_values;
+  if (mumps->inverse_entries(rows, sorted, sorted_values) != 0)
+    throw std::runtime_error("Reynolds solver: MUMPS selected inverse entries failed");
+  const std::size_t m = rows.size();
+  values.resize(m * columns.size());
+  for (std::size_t c = 0; c < order.size(); ++c)
+    std::copy(sorted_values.begin() + c * m, sorted_values.begin() + (c + 1) * m,
+              values.begin() + order[c] * m);
+  return true;
+}
+
 LowRankSolve solve_column_update(SparseDirect &lu,
                                  const dealii::TrilinosWrappers::SparseMatrix &matrix,
-                                 const std::vector<unsigned int> &columns, std::vector<double> U,
-                                 const double *b, double *x, const double min_rcond,
-                                 const double max_backward_error, double &rcond,
-                                 double &backward_error)
+                                 const std::vector<unsigned int> &columns,
+                                 const std::vector<SparseColumn> &U, const double *b, double *x,
+                                 const double min_rcond, const double max_backward_error,
+                                 double &rcond, double &backward_error)
 {
   rcond = backward_error = std::numeric_limits<double>::quiet_NaN();
   const std::size_t n = matrix.m(), k = columns.size();
-  if (U.size() != n * k)
-    throw std::logic_error("solve_column_update: U must hold n x k values");
-  // [y Z] = A0^-1 [b U], one block solve, in U's storage (n x (k + 1) values: 66 MB at the
-  // caller's limit of 2.5e5 unknowns and k = 32)
-  std::vector<double> X(std::move(U));
-  X.resize(n * (k + 1));
-  std::copy_backward(X.begin(), X.begin() + n * k, X.end());
-  std::copy(b, b + n, X.begin());
-  lu.solve_block(X, k + 1);
-  const double *y = X.data();
+  if (U.size() != k)
+    throw std::logic_error("solve_column_update: U must hold k columns");
+  // y = A0^-1 b and EZ = E^T A0^-1 U (k x k, column-major)
+  std::vector<double> y(b, b + n), EZ(k * k, 0.0), X;
+  std::vector<unsigned int> support; // rows where U has entries, ascending
+  for (const SparseColumn &column : U)
+    for (const auto &[i, value] : column)
+    {
+      if (i >= n)
+        throw std::logic_error("solve_column_update: a row of U beyond the matrix");
+      support.push_back(i);
+    }
+  std::sort(support.begin(), support.end());
+  support.erase(std::unique(support.begin(), support.end()), support.end());
+  std::vector<double> entries; // (A0^-1)(columns[p], support[s]) at s * k + p
+  const bool by_entries = k > 0 && lu.inverse_entries(columns, support, entries);
+  if (by_entries || k == 0)
+  {
+    lu.solve_block(y, 1);
+    for (std::size_t q = 0; q < k; ++q)
+      for (const auto &[i, value] : U[q])
+      {
+        const std::size_t s = std::lower_bound(support.begin(), support.end(), i) - support.begin();
+        for (std::size_t p = 0; p < k; ++p)
+          EZ[q * k + p] += entries[s * k + p] * value;
+      }
+  }
+  else
+  {
+    // [y Z] = A0^-1 [b U], one block solve of n x (k + 1) values (KLU: below 2e4 unknowns)
+    X.assign(n * (k + 1), 0.0);
+    std::copy(b, b + n, X.begin());
+    for (std::size_t q = 0; q < k; ++q)
+      for (const auto &[i, value] : U[q])
+        X[(q + 1) * n + i] += value;
+    lu.solve_block(X, k + 1);
+    std::copy(X.begin(), X.begin() + n, y.begin());
+    for (std::size_t q = 0; q < k; ++q)
+      for (std::size_t p = 0; p < k; ++p)
+        EZ[q * k + p] = X[(q + 1) * n + columns[p]];
+  }
   // capacitance C = I + E^T Z and t = C^-1 E^T y
   dealii::LAPACKFullMatrix<double> C(k, k);
   dealii::Vector<double> t(k);
@@ -216,7 +320,7 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   {
     t(p) = y[columns[p]];
     for (std::size_t q = 0; q < k; ++q)
-      C(p, q) = (p == q ? 1.0 : 0.0) + X[(q + 1) * n + columns[p]];
+      C(p, q) = (p == q ? 1.0 : 0.0) + EZ[q * k + p];
   }
   if (k > 0)
   {
@@ -228,7 +332,7 @@ LowRankSolve solve_column_update(SparseDirect &lu,
     {
       double column = 0;
       for (std::size_t p = 0; p < k; ++p)
-        column += std::abs(X[(q + 1) * n + columns[p]]);
+        column += std::abs(EZ[q * k + p]);
       terms = std::max(terms, column);
     }
     // a zero pivot throws in deal.II: that is a singular C
@@ -257,13 +361,26 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   }
   else
     rcond = 1;
-  // x = y - Z t
-  std::vector<double> result(y, y + n);
-  for (std::size_t q = 0; q < k; ++q)
+  std::vector<double> result;
+  if (by_entries)
   {
-    const double *z = X.data() + (q + 1) * n;
-    for (std::size_t i = 0; i < n; ++i)
-      result[i] -= z[i] * t(q);
+    // x = A0^-1 (b - U t)
+    result.assign(b, b + n);
+    for (std::size_t q = 0; q < k; ++q)
+      for (const auto &[i, value] : U[q])
+        result[i] -= value * t(q);
+    lu.solve_block(result, 1);
+  }
+  else
+  {
+    // x = y - Z t
+    result = y;
+    for (std::size_t q = 0; q < k; ++q)
+    {
+      const double *z = X.data() + (q + 1) * n;
+      for (std::size_t i = 0; i < n; ++i)
+        result[i] -= z[i] * t(q);
+    }
   }
   // the true residual of A1: the update is exact algebra, its round-off is checked here
   const Epetra_CrsMatrix &A1 = matrix.trilinos_matrix();

@@ -243,7 +243,7 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
   std::sort(columns.begin(), columns.end());
   columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
   const unsigned int K = columns.size();
-  std::vector<double> U(static_cast<std::size_t>(N) * K, 0.0);
+  std::vector<SparseColumn> U(K);
   for (unsigned int d = 0; d < K; ++d)
   {
     const unsigned int j = columns[d];
@@ -251,7 +251,7 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
     {
       const double old_value = g.A.el(i, j), new_value = i == j ? 2 * old_value : 0.5 * old_value;
       g.A.set(i, j, new_value);
-      U[static_cast<std::size_t>(d) * N + i] = new_value - old_value;
+      U[d].emplace_back(i, new_value - old_value);
       (void)value;
     }
   }
@@ -286,6 +286,54 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
   EXPECT_EQ(z[0], -7.0); // x untouched
 }
 } // namespace
+
+// Selected entries of A^-1 (MUMPS's pruned solve, used by the low-rank update for E^T A0^-1 U)
+// against the columns of A^-1 from ordinary solves of unit vectors. Two backward-stable answers of
+// A z = e_c differ by at most |A^-1| (eta_1 + eta_2) (|A| |z| + 1) (Varah: |A^-1|_inf <= 1 /
+// sigma); the ordinary solve's eta is measured, the pruned one's (no full vector to take a
+// residual of) is taken as 128 u, the bound the low-rank update accepts. Rows and columns are
+// asked for in no particular order; KLU has no such solve (false).
+TEST(SparseDirect, InverseEntriesAreThoseOfTheColumnsOfTheInverse)
+{
+  const double u = 0.5 * std::numeric_limits<double>::epsilon();
+  GridMatrix g(150); // 22 500 unknowns: MUMPS
+  const unsigned int N = 150 * 150;
+  SparseDirect lu;
+  lu.factorize(g.A);
+  ASSERT_STREQ(lu.package_name(), "MUMPS");
+  const std::vector<unsigned int> rows{N - 1, 5, 777, 11234, 3, 11235, 11084},
+      columns{20000, 17, 11234, 9999, 150};
+  std::vector<double> values;
+  ASSERT_TRUE(lu.inverse_entries(rows, columns, values));
+  ASSERT_EQ(values.size(), rows.size() * columns.size());
+  const double A_norm = g.A.linfty_norm();
+  for (std::size_t c = 0; c < columns.size(); ++c)
+  {
+    std::vector<double> e(N, 0.0), z(N, 0.0);
+    e[columns[c]] = 1;
+    z = e;
+    lu.solve_block(z, 1);
+    const double eta = backward_error(g.A, z, e);
+    double z_max = 0;
+    for (const double v : z)
+      z_max = std::max(z_max, std::abs(v));
+    const double bound = (eta + 128 * u) * (A_norm * z_max + 1) / g.sigma;
+    for (std::size_t p = 0; p < rows.size(); ++p)
+      EXPECT_NEAR(values[c * rows.size() + p], z[rows[p]], bound)
+          << "(" << rows[p] << ", " << columns[c] << "), |z| " << z_max;
+  }
+  // the diagonal entry of a dominant matrix's inverse is positive and the largest of its column
+  // here (an M-matrix: A^-1 >= 0); the entry (11234, 11234) is asked for
+  EXPECT_GT(values[2 * rows.size() + 3], 0.0);
+
+  GridMatrix small(20); // 400 unknowns: KLU
+  SparseDirect klu;
+  klu.factorize(small.A);
+  ASSERT_STREQ(klu.package_name(), "KLU");
+  std::vector<double> untouched{-7.0};
+  EXPECT_FALSE(klu.inverse_entries({1, 2}, {3}, untouched));
+  EXPECT_EQ(untouched, std::vector<double>{-7.0});
+}
 
 TEST(SparseDirect, LowRankUpdateGivesTheFreshFactorisationsSolutionKlu)
 {
@@ -332,25 +380,31 @@ TEST(SparseDirect, LowRankUpdateRefusesASingularChange)
 {
   // Column j of A1 is zero: A1 is singular, and so is the 1 x 1 capacitance matrix
   // C = 1 + (A0^-1 U)_j = 1 - 1 up to round-off (det A1 = det A0 det C); the update must be
-  // refused, not return a wrong answer.
-  GridMatrix g(20);
-  const unsigned int N = 400, j = 210;
-  SparseDirect lu;
-  lu.factorize(g.A);
-  std::vector<double> U(N, 0.0);
-  for (const auto &[i, value] : g.row(j))
+  // refused, not return a wrong answer. KLU (block solve) and MUMPS (selected entries of A0^-1).
+  for (const auto &[m, package] : {std::pair<unsigned int, const char *>{20, "KLU"},
+                                   std::pair<unsigned int, const char *>{150, "MUMPS"}})
   {
-    U[i] = -g.A.el(i, j);
-    g.A.set(i, j, 0.0);
-    (void)value;
+    GridMatrix g(m);
+    const unsigned int N = m * m, j = N / 2 + 10;
+    SparseDirect lu;
+    lu.factorize(g.A);
+    ASSERT_STREQ(lu.package_name(), package);
+    std::vector<SparseColumn> U(1);
+    for (const auto &[i, value] : g.row(j))
+    {
+      U[0].emplace_back(i, -g.A.el(i, j));
+      g.A.set(i, j, 0.0);
+      (void)value;
+    }
+    g.A.compress(VectorOperation::insert);
+    std::vector<double> b(N, 1.0), x(N, -7.0);
+    double rcond, eta;
+    EXPECT_EQ(solve_column_update(lu, g.A, {j}, U, b.data(), x.data(), 1e-8, 0x1p-46, rcond, eta),
+              LowRankSolve::ill_conditioned)
+        << package;
+    EXPECT_LT(rcond, 1e-8) << package;
+    EXPECT_EQ(x[0], -7.0) << package;
   }
-  g.A.compress(VectorOperation::insert);
-  std::vector<double> b(N, 1.0), x(N, -7.0);
-  double rcond, eta;
-  EXPECT_EQ(solve_column_update(lu, g.A, {j}, U, b.data(), x.data(), 1e-8, 0x1p-46, rcond, eta),
-            LowRankSolve::ill_conditioned);
-  EXPECT_LT(rcond, 1e-8);
-  EXPECT_EQ(x[0], -7.0);
 }
 
 // The band solve of the JFO polish on a matrix split among the ranks (ctest

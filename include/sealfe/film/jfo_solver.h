@@ -34,10 +34,6 @@ public:
   /// update of the held factorisation instead of a new one (low_rank_solve); 0 turns it off
   /// (tests).
   static inline unsigned int low_rank_limit = 32;
-  /// Up to this many dofs: at 5.3e5 the MUMPS block solve of k + 1 <= 33 columns cost as much as
-  /// a numeric factorisation (1.56 s against 1.64 s on the tilted seal, 0.80 against 0.66 s on
-  /// wavy_jfo), at 1.3e5 about half of one.
-  static constexpr std::size_t low_rank_max_dofs = 250000;
   /// Tests: solves (not start-only levels) whose Jacobian at the solution, the one the linearised
   /// loads solve with, came from the global P A and G by columns (jacobian_by_columns: where the
   /// converged iteration assembled only the residual, i.e. it followed a polish) or from the cell

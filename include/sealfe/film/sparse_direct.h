@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 class Amesos_BaseSolver;
@@ -36,6 +37,13 @@ public:
   /// column, n the matrix size). MUMPS solves the block in one call (its triangular solves then
   /// work on blocks of columns), where Amesos would call it once per column.
   void solve_block(std::vector<double> &X, unsigned int m);
+  /// Selected entries of A^-1 with the last factorisation: values[c * rows.size() + p] =
+  /// (A^-1)(rows[p], columns[c]). MUMPS's selected-entries solve (ICNTL(30)), which prunes
+  /// both triangular solves to the paths of the elimination tree that the entries need, so a few
+  /// thousand entries cost about one ordinary solve. One rank; false (values untouched) where the
+  /// factorisation is not MUMPS's.
+  bool inverse_entries(const std::vector<unsigned int> &rows,
+                       const std::vector<unsigned int> &columns, std::vector<double> &values);
   void clear();
   bool initialized() const { return static_cast<bool>(solver); }
   /// Factorisations that reused the symbolic analysis of an earlier one.
@@ -60,23 +68,27 @@ enum class LowRankSolve
   inaccurate       // the residual check failed: x not set
 };
 
+/// A sparse column: (row, value) pairs.
+using SparseColumn = std::vector<std::pair<unsigned int, double>>;
+
 /// x = A1^-1 b by the Sherman-Morrison-Woodbury formula, where A1 differs from the factorised A0
-/// in the columns `columns` only: A1 = A0 + U E^T, U (n x k, column by column) the differences
-/// A1(:, columns) - A0(:, columns) (moved in: its storage takes the block solve), E those unit
-/// columns. One block solve with A0's factors for
-/// [b U] (k + 1 columns) and the k x k capacitance system C = I + E^T A0^-1 U, then
-/// x = y - Z C^-1 E^T y (y = A0^-1 b, Z = A0^-1 U). det A1 = det A0 det C, so A1 is singular
-/// where C is: refused (ill_conditioned) when 1 / ((1 + |E^T Z|_1) |C^-1|_1), C's reciprocal
-/// condition number against the terms summed into it, is below
-/// `min_rcond`. The answer is accepted only if its normwise backward error for A1 (given as
-/// `matrix`), |b - A1 x|_inf / (|A1|_inf |x|_inf + |b|_inf), is at most `max_backward_error`
-/// (else inaccurate). One rank; b, x: the n values in order. `rcond`, `backward_error`: what
-/// was found (NaN where not computed).
+/// in the columns `columns` only: A1 = A0 + U E^T, U (k sparse columns) the differences
+/// A1(:, columns) - A0(:, columns), E those unit columns. With the capacitance system C = I + E^T
+/// A0^-1 U and y = A0^-1 b, x = A0^-1 (b - U C^-1 E^T y). MUMPS: two solves, and E^T A0^-1 U from
+/// the entries of A0^-1 in the rows `columns` and the columns where U has entries
+/// (inverse_entries); KLU: one block solve for [b U] (k + 1 columns), x = y - Z C^-1 E^T y (Z =
+/// A0^-1 U). det A1 = det A0 det C, so A1 is singular where C is: refused (ill_conditioned) when 1
+/// / ((1 + |E^T Z|_1) |C^-1|_1), C's reciprocal condition number against the terms summed into it,
+/// is below `min_rcond`. The answer is accepted only if its normwise backward error for A1 (given
+/// as `matrix`), |b - A1 x|_inf /
+/// (|A1|_inf |x|_inf + |b|_inf), is at most `max_backward_error` (else inaccurate). One rank; b, x:
+/// the n values in order. `rcond`, `backward_error`: what was found (NaN where not computed).
 LowRankSolve solve_column_update(SparseDirect &lu,
                                  const dealii::TrilinosWrappers::SparseMatrix &matrix,
-                                 const std::vector<unsigned int> &columns, std::vector<double> U,
-                                 const double *b, double *x, double min_rcond,
-                                 double max_backward_error, double &rcond, double &backward_error);
+                                 const std::vector<unsigned int> &columns,
+                                 const std::vector<SparseColumn> &U, const double *b, double *x,
+                                 double min_rcond, double max_backward_error, double &rcond,
+                                 double &backward_error);
 
 /// The dofs of `seeds` (flags by global index, every dof) and their neighbours in the matrix
 /// graph, `layers` times. On several ranks collective: the seeds and each layer are the union
