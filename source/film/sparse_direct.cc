@@ -241,8 +241,7 @@ bool SparseDirect::inverse_entries(const std::vector<unsigned int> &rows,
                                    std::vector<double> &values)
 {
   auto *mumps = dynamic_cast<BlockMumps *>(solver.get());
-  const Epetra_RowMatrix &A = *dynamic_cast<const Epetra_RowMatrix *>(problem->GetOperator());
-  if (!mumps || A.Comm().NumProc() != 1)
+  if (!mumps || mumps->Comm().NumProc() != 1)
     return false;
   // MUMPS takes the columns in order: sort them, and put the values back in the caller's order
   std::vector<unsigned int> order(columns.size());
