@@ -32,8 +32,8 @@ public:
   static inline bool assemble_by_cells = false;
   /// Largest number of changed columns for which a global active-set round solves by a low-rank
   /// update of the held factorisation instead of a new one (low_rank_solve); 0 turns it off
-  /// (tests). At 1.05e6 dofs an update of 42-55 columns cost about one factorisation (2.0-2.8 s,
-  /// doc/performance.md "Session 18").
+  /// (tests). At 1.05e6 dofs (42 and 55 flips in the second global round) an update cost about one
+  /// factorisation (2.0-2.8 s, doc/performance.md "Session 18").
   static inline unsigned int low_rank_limit = 32;
   /// Tests: solves (not start-only levels) whose Jacobian at the solution, the one the linearised
   /// loads solve with, came from the global P A and G by columns (jacobian_by_columns: where the
