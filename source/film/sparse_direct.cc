@@ -107,14 +107,39 @@ public:
     if (next != columns.size())
       return -1; // columns not ascending, repeated or out of range
     values.assign(entry_row.size(), 0.0);
-    const auto saved = MDS;
-    MDS.icntl[29] = 1;
-    MDS.nz_rhs = int(entry_row.size());
-    MDS.nrhs = n;
-    MDS.lrhs = n;
-    MDS.irhs_ptr = column_start.data();
-    MDS.irhs_sparse = entry_row.data();
-    MDS.rhs_sparse = values.data();
+    return solve_phase(
+        [&](DMUMPS_STRUC_C &id)
+        {
+          id.icntl[29] = 1;
+          id.nz_rhs = int(entry_row.size());
+          id.nrhs = n;
+          id.lrhs = n;
+          id.irhs_ptr = column_start.data();
+          id.irhs_sparse = entry_row.data();
+          id.rhs_sparse = values.data();
+        });
+  }
+
+  /// The n x m column-major block X overwritten by A^-1 X (one rank: the host holds it all).
+  int solve_block(double *X, const int n, const int m)
+  {
+    return solve_phase(
+        [&](DMUMPS_STRUC_C &id)
+        {
+          id.nrhs = m;
+          id.lrhs = n;
+          id.rhs = X;
+        });
+  }
+
+private:
+  /// One MUMPS solve (job 3) with the right-hand side `set_rhs` describes; the right-hand-side
+  /// fields Amesos set for its own solves are restored afterwards. Returns INFO(1).
+  template <class SetRhs>
+  int solve_phase(SetRhs &&set_rhs)
+  {
+    const DMUMPS_STRUC_C saved = MDS;
+    set_rhs(MDS);
     MDS.job = 3;
     dmumps_c(&MDS);
     const int info = MDS.info[0];
@@ -122,26 +147,10 @@ public:
     MDS.nz_rhs = saved.nz_rhs;
     MDS.nrhs = saved.nrhs;
     MDS.lrhs = saved.lrhs;
+    MDS.rhs = saved.rhs;
     MDS.irhs_ptr = saved.irhs_ptr;
     MDS.irhs_sparse = saved.irhs_sparse;
     MDS.rhs_sparse = saved.rhs_sparse;
-    return info;
-  }
-
-  /// The n x m column-major block X overwritten by A^-1 X (one rank: the host holds it all).
-  int solve_block(double *X, const int n, const int m)
-  {
-    const int nrhs = MDS.nrhs, lrhs = MDS.lrhs;
-    double *rhs = MDS.rhs;
-    MDS.job = 3;
-    MDS.nrhs = m;
-    MDS.lrhs = n;
-    MDS.rhs = X;
-    dmumps_c(&MDS);
-    const int info = MDS.info[0];
-    MDS.nrhs = nrhs;
-    MDS.lrhs = lrhs;
-    MDS.rhs = rhs;
     return info;
   }
 };

@@ -322,8 +322,8 @@ TEST(SparseDirect, InverseEntriesAreThoseOfTheColumnsOfTheInverse)
       EXPECT_NEAR(values[c * rows.size() + p], z[rows[p]], bound)
           << "(" << rows[p] << ", " << columns[c] << "), |z| " << z_max;
   }
-  // the diagonal entry of a dominant matrix's inverse is positive and the largest of its column
-  // here (an M-matrix: A^-1 >= 0); the entry (11234, 11234) is asked for
+  // the matrix is an M-matrix (dominant, off-diagonal entries <= 0), so A^-1 >= 0 and its
+  // diagonal entries are positive; the entry (11234, 11234) is asked for
   EXPECT_GT(values[2 * rows.size() + 3], 0.0);
 
   GridMatrix small(20); // 400 unknowns: KLU
