@@ -361,7 +361,8 @@ bool JFOSolver::jacobian_by_columns(const VectorType &a, const VectorType &v)
   return true;
 }
 
-bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, const bool with_rhs)
+bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, const bool with_rhs,
+                                     const std::vector<bool> *only_rows)
 {
   // residual = F - A p - G v with p = p_cav + P a; the active-set right-hand side adds back the
   // term of the unknown each node keeps: F - A p_cav - sum_j (a_j >= v_j ? P A_:j a_j : G_:j v_j)
@@ -458,6 +459,8 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
                [&](const int row, const int entries, const double *, const int *columns,
                    const std::size_t first)
                {
+                 if (only_rows && !(*only_rows)[row_gid[row]])
+                   return;
                  if (constrained[row_gid[row]])
                  {
                    res[row] = 0;
@@ -485,7 +488,7 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
 }
 
 double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool with_jacobian,
-                           const bool active_set_step)
+                           const bool active_set_step, const std::vector<bool> *only_rows)
 {
   // the global matrices are prepared outside this timer (in "jfo cell matrices")
   // the global matrices serve the active-set Jacobians and every residual (a polish, which
@@ -494,7 +497,10 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
       (!with_jacobian || active_set_step) && prepare_global_matrices() && with_jacobian;
   TimerOutput::Scope timer_scope(s.timer, "jfo assembly");
   const bool by_products =
-      (select_columns || !with_jacobian) && assemble_by_products(a, v, with_jacobian);
+      (select_columns || !with_jacobian) && assemble_by_products(a, v, with_jacobian, only_rows);
+  // (the cell-by-cell path makes every row)
+  if (!by_products)
+    only_rows = nullptr;
   const unsigned int n = s.fe->n_dofs_per_cell();
   FullMatrix<double> J(n, n);
   Vector<double> R(n), correction(n), local_a(n), local_v(n), local_p(n);
@@ -593,9 +599,11 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
       for (int c = 0; c < M.NumMyCols(); ++c)
         keep_pressure[c] = column_a[c] >= column_v[c];
       for_each_row(M,
-                   [&](int, const int entries, double *row_values, const int *columns,
+                   [&](const int row, const int entries, double *row_values, const int *columns,
                        const std::size_t first)
                    {
+                     if (only_rows && !(*only_rows)[row_gid[row]])
+                       return;
                      for (int e = 0; e < entries; ++e)
                        row_values[e] =
                            keep_pressure[columns[e]] ? global_PA[first + e] : global_G[first + e];
@@ -635,7 +643,11 @@ void JFOSolver::warm_start()
   // dimples, and never regenerates a gmsh mesh (AnnulusMesh::sequences_jfo): such levels gave no
   // better start (the same global factorisations on the finest mesh) and cost their own solves,
   // or another gmsh run (doc/textures.md, Cost of JFO on resolved faces).
-  if (!coarse_start())
+  const bool started_coarse = coarse_start();
+  // (the coarse level's band start decides this level's, JFOSolver::polish)
+  band_first = band_start && started_coarse && !s.coarse_solver->jfo_band_start_failed;
+  s.jfo_band_start_failed = started_coarse && !band_first;
+  if (!started_coarse)
   {
     s.solve();
     s.pressure_scale = s.full_film_pressure_scale();
@@ -845,24 +857,59 @@ bool JFOSolver::polish()
   const bool serial = Utilities::MPI::n_mpi_processes(s.mpi_communicator) == 1;
   // by global index on every rank: each rank marks its own dofs, grow_in_graph unites them
   std::vector<bool> flipped(s.dof_handler.n_dofs(), false);
+  // flips of the band rounds from the start, and whether the first global round is still due
+  unsigned int band_start_flips = 0;
+  bool in_band_start = band_first;
+  if (band_first)
+  {
+    // A start interpolated from the mesh twice as coarse has its cavity boundary within about a
+    // coarse cell of the right place: the set changes near that boundary (811 nodes in the first
+    // round of the tilted seal at 5.3e5 dofs), and a global round made from that set would be
+    // factorised for nothing but those flips. Band rounds about the start's boundary move it
+    // first, so that the first global round flips few nodes (34 on that seal) and the confirming
+    // round is a low-rank update of its factorisation (low_rank_solve). Where the coarse level's
+    // error lies away from the boundary, the global round still flips many (the wavy example:
+    // 2854 after 4276 in band rounds); the finer levels then start with a global round.
+    band_first = false;
+    std::vector<bool> cavitated(flipped.size(), false), full_film(flipped.size(), false);
+    const double *pa = owned_values(set_a), *pv = owned_values(set_v);
+    std::size_t k = 0;
+    for (const auto i : s.locally_owned_dofs)
+    {
+      if (!s.homogeneous_constraints.is_constrained(i))
+        (pa[k] >= pv[k] ? full_film : cavitated)[i] = true;
+      ++k;
+    }
+    // the boundary: nodes with a neighbour in the other set, on both sides
+    const std::vector<bool> near_cavity = grow_in_graph(s.system_matrix, cavitated, 1),
+                            near_film = grow_in_graph(s.system_matrix, full_film, 1);
+    for (std::size_t i = 0; i < flipped.size(); ++i)
+      flipped[i] = near_cavity[i] && near_film[i];
+    band = std::find(flipped.begin(), flipped.end(), true) != flipped.end();
+  }
   // 4 layers: measured 1.17 s against 1.12 s (2 layers) on the tilted 64 x 128 case, 0.88 s
   // against 1.19 s on wavy_jfo 16 x 512; 0 layers (the flipped nodes only) took 19 rounds
   constexpr unsigned int band_layers = 4;
   unsigned int global_rounds = 0, band_in_a_row = 0;
-  unsigned int last_flips = 0, last_global_flips = std::numeric_limits<unsigned int>::max();
+  // (max: band rounds from the start continue while their flips decrease)
+  unsigned int last_flips = std::numeric_limits<unsigned int>::max(),
+               last_global_flips = std::numeric_limits<unsigned int>::max();
   bool band_allowed = true;
   for (unsigned int round = 0; global_rounds < 40 && round < 400 && !consistent; ++round)
   {
     ta = set_a;
     tv = set_v;
-    assemble(ta, tv, true, true);
+    // a band round needs only its band's rows (on the tilted seal at 5.3e5 dofs 11 of the 13
+    // rounds of the finest level are band rounds, each band a few % of the dofs)
+    const std::vector<bool> band_dofs =
+        band ? grow_in_graph(s.system_matrix, flipped, band_layers) : std::vector<bool>();
+    assemble(ta, tv, true, true, band ? &band_dofs : nullptr);
     ++active_set_rounds;
     w = 0;
     if (band)
     {
       ++band_rounds;
-      solve_on_subset(s.system_matrix, grow_in_graph(s.system_matrix, flipped, band_layers),
-                      newton_rhs, w);
+      solve_on_subset(s.system_matrix, band_dofs, newton_rhs, w);
     }
     else
     {
@@ -925,8 +972,19 @@ bool JFOSolver::polish()
     set_a.compress(VectorOperation::insert);
     set_v.compress(VectorOperation::insert);
     flips = Utilities::MPI::sum(flips, s.mpi_communicator);
+    if (in_band_start && band)
+      band_start_flips += flips;
+    else if (in_band_start)
+    {
+      // The band start failed when its global round flips more than a tenth of what the band
+      // rounds flipped (measured: 1.6-3 % on the tilted seal from 3.3e4 to 5.3e5 dofs, 37-100 %
+      // on the wavy example from 2304 dofs)
+      in_band_start = false;
+      s.jfo_band_start_failed = 10 * flips > band_start_flips;
+    }
     // A start for the next finer mesh (mesh sequencing) needs no global check.
-    consistent = (!band || s.start_only) && flips == 0;
+    // (a band round before any global round holds values interpolated from the coarse level)
+    consistent = (!band || (s.start_only && global_rounds > 0)) && flips == 0;
     // At most 10 band rounds between global rounds (a set that keeps changing far from the last
     // flips is found faster by global rounds), and band rounds continue only while their flips
     // decrease. Band rounds are given up

@@ -32,9 +32,13 @@ public:
   static inline bool assemble_by_cells = false;
   /// Largest number of changed columns for which a global active-set round solves by a low-rank
   /// update of the held factorisation instead of a new one (low_rank_solve); 0 turns it off
-  /// (tests). At 1.05e6 dofs (42 and 55 flips in the second global round) an update cost about one
-  /// factorisation (2.0-2.8 s, doc/performance.md "Session 18").
-  static inline unsigned int low_rank_limit = 32;
+  /// (tests). 64: on the tilted seal at 5.3e5 dofs the confirming round differs in 33 columns
+  /// after a band start and its update costs half a factorisation (1.0 against 1.9 s); at 1.05e6
+  /// dofs 48 columns cost about one (2.0-2.8 s, doc/performance.md "Sessions 18 and 19").
+  static inline unsigned int low_rank_limit = 64;
+  /// Whether a level started from the coarse level begins its polish with band rounds about the
+  /// start's cavity boundary (JFOSolver::polish); false: with a global round (tests).
+  static inline bool band_start = true;
   /// Tests: solves (not start-only levels) whose Jacobian at the solution, the one the linearised
   /// loads solve with, came from the global P A and G by columns (jacobian_by_columns: where the
   /// converged iteration assembled only the residual, i.e. it followed a polish) or from the cell
@@ -61,8 +65,11 @@ public:
 private:
   /// Assemble the residual (and the reduced Newton system) at (a, v); returns the merit
   /// 1/2 (|R|^2 + |phi|^2). `active_set_step`: the linear system of a fixed cavitated set.
+  /// `only_rows` (by global index; a band round's rows): where the global matrices serve, only
+  /// those rows of the residual, right-hand side and matrix are made (the others keep stale
+  /// values, and the merit is not that of the whole system).
   double assemble(const VectorType &a, const VectorType &v, bool with_jacobian,
-                  bool active_set_step = false);
+                  bool active_set_step = false, const std::vector<bool> *only_rows = nullptr);
   /// The global matrices P A and G in the storage order of the system matrix (one rank, only
   /// Dirichlet constraints), so that an active-set Jacobian is a column selection of the two;
   /// false (and the cell-by-cell assembly is used) otherwise.
@@ -70,7 +77,8 @@ private:
   /// The residual (and, with `with_rhs`, the right-hand side of the active-set system) at (a, v)
   /// as products of the global P A and G instead of a loop over the cells; false (nothing done)
   /// when the global matrices are not there or the vectors are not the plain one-rank layout.
-  bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs);
+  bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs,
+                            const std::vector<bool> *only_rows = nullptr);
   /// The local values of an owned (not ghosted) vector: entry k is the k-th locally owned dof.
   double *owned_values(VectorType &x) const;
   const double *owned_values(const VectorType &x) const;
@@ -135,6 +143,9 @@ private:
   bool monotone = false;
   unsigned int active_set_rounds = 0; // linear solves of the polish, band rounds included
   unsigned int band_rounds = 0;
+  /// Set by a start from the coarse level: the first polish begins with band rounds about the
+  /// start's cavity boundary, before any global factorisation (JFOSolver::polish).
+  bool band_first = false;
   /// The set of the Jacobian whose factorisation the linear solver holds (keep-pressure flag per
   /// dof; empty: none usable) and the solver's factorisation count just after it was made (a
   /// later factorisation, e.g. of a Newton step, makes it stale).
