@@ -901,14 +901,19 @@ bool JFOSolver::polish()
     tv = set_v;
     // a band round needs only its band's rows (on the tilted seal at 5.3e5 dofs 11 of the 13
     // rounds of the finest level are band rounds, each band a few % of the dofs)
-    const std::vector<bool> band_dofs =
-        band ? grow_in_graph(s.system_matrix, flipped, band_layers) : std::vector<bool>();
+    std::vector<bool> band_dofs;
+    if (band)
+    {
+      TimerOutput::Scope timer_scope(s.timer, "jfo band rounds");
+      band_dofs = grow_in_graph(s.system_matrix, flipped, band_layers);
+    }
     assemble(ta, tv, true, true, band ? &band_dofs : nullptr);
     ++active_set_rounds;
     w = 0;
     if (band)
     {
       ++band_rounds;
+      TimerOutput::Scope timer_scope(s.timer, "jfo band rounds");
       solve_on_subset(s.system_matrix, band_dofs, newton_rhs, w);
     }
     else
