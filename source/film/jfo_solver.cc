@@ -614,6 +614,9 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
     if (!by_products)
       newton_rhs.compress(VectorOperation::add);
   }
+  // a band round's rows only: no merit of the whole system (the polish does not read it)
+  if (only_rows)
+    return std::numeric_limits<double>::quiet_NaN();
   double fb_squared = 0;
   const std::size_t n_dofs = s.dof_handler.n_dofs();
   if (const double *pa = plain_values(a, n_dofs), *pv = plain_values(v, n_dofs); pa && pv)
@@ -646,6 +649,9 @@ void JFOSolver::warm_start()
   const bool started_coarse = coarse_start();
   // (the coarse level's band start decides this level's, JFOSolver::polish)
   band_first = band_start && started_coarse && !s.coarse_solver->jfo_band_start_failed;
+  // every rank takes the same path (the band rounds are collective); the coarse levels solved
+  // whole on each rank (MPI_COMM_SELF) should agree, but nothing makes them
+  band_first = Utilities::MPI::min(band_first ? 1 : 0, s.mpi_communicator) != 0;
   s.jfo_band_start_failed = started_coarse && !band_first;
   if (!started_coarse)
   {
@@ -871,6 +877,7 @@ bool JFOSolver::polish()
     // error lies away from the boundary, the global round still flips many (the wavy example:
     // 2854 after 4276 in band rounds); the finer levels then start with a global round.
     band_first = false;
+    TimerOutput::Scope timer_scope(s.timer, "jfo band rounds");
     std::vector<bool> cavitated(flipped.size(), false), full_film(flipped.size(), false);
     const double *pa = owned_values(set_a), *pv = owned_values(set_v);
     std::size_t k = 0;
@@ -883,9 +890,17 @@ bool JFOSolver::polish()
     // the boundary: nodes with a neighbour in the other set, on both sides
     const std::vector<bool> near_cavity = grow_in_graph(s.system_matrix, cavitated, 1),
                             near_film = grow_in_graph(s.system_matrix, full_film, 1);
+    // (the seeds of the first band; the same n/20 bound as the flips that seed later bands)
+    std::size_t seeds = 0;
     for (std::size_t i = 0; i < flipped.size(); ++i)
+    {
       flipped[i] = near_cavity[i] && near_film[i];
-    band = std::find(flipped.begin(), flipped.end(), true) != flipped.end();
+      seeds += flipped[i];
+    }
+    band = seeds > 0 && seeds < s.dof_handler.n_dofs() / 20;
+    // not taken (no boundary, or one too long: small coarse levels): no verdict on the start,
+    // the finer level tries its own
+    in_band_start = band;
   }
   // 4 layers: measured 1.17 s against 1.12 s (2 layers) on the tilted 64 x 128 case, 0.88 s
   // against 1.19 s on wavy_jfo 16 x 512; 0 layers (the flipped nodes only) took 19 rounds
@@ -1274,8 +1289,9 @@ void JFOSolver::store_solution()
 {
   // The last assembly built the Jacobian at the solution: linearized_loads solves with it (it is
   // factorised at its first solve, so a run without linearised loads, and every mesh-sequencing
-  // level, never pays for it). Keep which unknown each node kept with its complementarity
-  // derivatives.
+  // level, never pays for it; on a mesh-sequencing level, which may end on a band round, it is
+  // what that round assembled and is never solved with). Keep which unknown each node kept with its
+  // complementarity derivatives.
   s.factorize(false, true, true);
   s.jfo_keep_pressure.reinit(s.locally_owned_dofs, s.mpi_communicator);
   s.jfo_elimination.reinit(s.locally_owned_dofs, s.mpi_communicator);

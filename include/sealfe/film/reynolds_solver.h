@@ -156,8 +156,9 @@ public:
   /// Of the global rounds, those solved by a low-rank update of an earlier round's factorisation
   /// (no factorisation: JFOSolver::low_rank_solve).
   unsigned int low_rank_updates() const { return jfo_low_rank_updates; }
-  /// JFO on a sequenced mesh: whether the last solve began with a global round because the band
-  /// rounds from the coarse start did not find the global set (JFOSolver::polish).
+  /// JFO on a sequenced mesh: whether a finer level started from this one skips the band start,
+  /// because this level's first global round flipped more than a tenth of what its band rounds
+  /// flipped, or this level did not take the band start (JFOSolver::polish, warm_start).
   bool band_start_failed() const { return jfo_band_start_failed; }
   /// Factorisations (or AMG set-ups) and Krylov iterations of all mesh-sequencing levels.
   unsigned int coarse_level_factorizations() const { return coarse_factorizations; }
@@ -328,8 +329,9 @@ private:
   unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0, jfo_band_rounds = 0,
                jfo_low_rank_updates = 0;
   /// JFO on a sequenced mesh: whether the band rounds about the coarse start's cavity boundary
-  /// left the set far from the global one (JFOSolver::polish), or were skipped because a
-  /// coarser level's had; the finer level then starts with a global round.
+  /// left the set far from the global one (JFOSolver::polish), or were not taken (a coarser
+  /// level's had failed, or the test hook JFOSolver::band_start is off); the finer level then
+  /// starts with a global round.
   bool jfo_band_start_failed = false;
   unsigned int current_coarsening = 0;
   double cavitation_residual = 0;
