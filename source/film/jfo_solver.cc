@@ -997,8 +997,8 @@ bool JFOSolver::polish()
     else if (in_band_start)
     {
       // The band start failed when its global round flips more than a tenth of what the band
-      // rounds flipped (measured: 1.6-3 % on the tilted seal from 3.3e4 to 5.3e5 dofs, 37-100 %
-      // on the wavy example from 2304 dofs)
+      // rounds flipped (measured: 0-3 % on the tilted seal from 544 to 5.3e5 dofs, 37-105 %
+      // on the wavy example from 640 dofs)
       in_band_start = false;
       s.jfo_band_start_failed = 10 * flips > band_start_flips;
     }
