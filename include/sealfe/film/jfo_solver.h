@@ -34,8 +34,8 @@ public:
   /// update of the held factorisation instead of a new one (low_rank_solve); 0 turns it off
   /// (tests). 64: on the tilted seal at 5.3e5 dofs the confirming round differs in 33 columns
   /// after a band start and its update costs half a factorisation (1.0 against 1.9 s). At 1.05e6
-  /// dofs two updates (48, then 50 columns) cost about a factorisation and a small update, so the
-  /// limit neither gains nor loses there (doc/performance.md "Sessions 18 and 19").
+  /// dofs the confirming round differs in about 50 columns; its update costs 1.8-1.9 s against
+  /// 4.8-5.8 s for a factorisation with its analysis (doc/performance.md "Sessions 18 to 20").
   static inline unsigned int low_rank_limit = 64;
   /// Whether a level started from the coarse level begins its polish with band rounds about the
   /// start's cavity boundary (JFOSolver::polish); false: with a global round (tests).
