@@ -448,7 +448,8 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
     constant_residual.assign(cr, cr + M.NumMyRows());
     constant_rhs.assign(cb, cb + M.NumMyRows());
   }
-  std::vector<char> keep_pressure;
+  std::vector<char> &keep_pressure = column_keeps_pressure;
+  keep_pressure.clear();
   if (with_rhs)
   {
     keep_pressure.resize(column_a.size());
@@ -589,15 +590,22 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
     if (select_columns)
     {
       // column j from P A where node j keeps its pressure (a_j >= v_j), else from G
-      // the values are set in place (for_each_row)
+      // the values are set in place (for_each_row); the flags are those of the residual by
+      // products just made, else gathered here
       const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
-      std::vector<double> column_a, column_v;
-      AssertThrow(values_at_columns(a, M, s.dof_handler.n_dofs(), column_a) &&
-                      values_at_columns(v, M, s.dof_handler.n_dofs(), column_v),
-                  ExcMessage("JFO: a column of the Jacobian without its value on this rank"));
-      std::vector<char> keep_pressure(M.NumMyCols());
-      for (int c = 0; c < M.NumMyCols(); ++c)
-        keep_pressure[c] = column_a[c] >= column_v[c];
+      if (!by_products)
+      {
+        std::vector<double> column_a, column_v;
+        AssertThrow(values_at_columns(a, M, s.dof_handler.n_dofs(), column_a) &&
+                        values_at_columns(v, M, s.dof_handler.n_dofs(), column_v),
+                    ExcMessage("JFO: a column of the Jacobian without its value on this rank"));
+        column_keeps_pressure.resize(M.NumMyCols());
+        for (int c = 0; c < M.NumMyCols(); ++c)
+          column_keeps_pressure[c] = column_a[c] >= column_v[c];
+      }
+      const std::vector<char> &keep_pressure = column_keeps_pressure;
+      AssertThrow(keep_pressure.size() == static_cast<std::size_t>(M.NumMyCols()),
+                  ExcInternalError());
       for_each_row(M,
                    [&](const int row, const int entries, double *row_values, const int *columns,
                        const std::size_t first)

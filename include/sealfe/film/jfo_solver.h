@@ -136,6 +136,10 @@ private:
   std::vector<char> constrained;
   std::vector<double> constrained_a, constrained_v;
   std::vector<long long> row_gid, column_gid;
+  /// Set by assemble_by_products with the right-hand side: per local column of the system
+  /// matrix, whether that node keeps its pressure (a_j >= v_j); assemble's column selection of the
+  /// same round reads it instead of gathering a and v at the columns again.
+  std::vector<char> column_keeps_pressure;
 
   VectorType a_owned, v_owned, a, v, residual, newton_rhs, w, da, dv, trial_a, trial_v, ta, tv;
   VectorType best_a, best_v;
