@@ -870,7 +870,8 @@ bool JFOSolver::polish()
   bool consistent = false, band = false;
   const bool serial = Utilities::MPI::n_mpi_processes(s.mpi_communicator) == 1;
   // by global index on every rank: each rank marks its own dofs, grow_in_graph unites them
-  // (and the last round's, to tell a front that moves from a set that cycles)
+  // (and the last round's: a node that flips again in the next round marks a set that goes back
+  // and forth; longer cycles run into the cap of 10 band rounds in a row)
   std::vector<bool> flipped(s.dof_handler.n_dofs(), false), last_flipped(flipped);
   // flips of the band rounds from the start, and whether the first global round is still due
   unsigned int band_start_flips = 0;
