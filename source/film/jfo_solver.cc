@@ -14,6 +14,7 @@
 #include <Epetra_CrsMatrix.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -873,6 +874,9 @@ bool JFOSolver::polish()
   // (and the last round's: a node that flips again in the next round marks a set that goes back
   // and forth; longer cycles run into the cap of 10 band rounds in a row)
   std::vector<bool> flipped(s.dof_handler.n_dofs(), false), last_flipped(flipped);
+  // a band is seeded by fewer than this many nodes (flips, or the start's boundary); more are
+  // found faster by a global round
+  const std::size_t max_band_seeds = s.dof_handler.n_dofs() / 20;
   // flips of the band rounds from the start, and whether the first global round is still due
   unsigned int band_start_flips = 0;
   bool in_band_start = band_first;
@@ -900,14 +904,14 @@ bool JFOSolver::polish()
     // the boundary: nodes with a neighbour in the other set, on both sides
     const std::vector<bool> near_cavity = grow_in_graph(s.system_matrix, cavitated, 1),
                             near_film = grow_in_graph(s.system_matrix, full_film, 1);
-    // (the seeds of the first band; the same n/20 bound as the flips that seed later bands)
+    // (the seeds of the first band)
     std::size_t seeds = 0;
     for (std::size_t i = 0; i < flipped.size(); ++i)
     {
       flipped[i] = near_cavity[i] && near_film[i];
       seeds += flipped[i];
     }
-    band = seeds > 0 && seeds < s.dof_handler.n_dofs() / 20;
+    band = seeds > 0 && seeds < max_band_seeds;
     // not taken (no boundary, or one too long: small coarse levels): no verdict on the start,
     // the finer level tries its own
     in_band_start = band;
@@ -1004,8 +1008,14 @@ bool JFOSolver::polish()
     trial_v.compress(VectorOperation::insert);
     set_a.compress(VectorOperation::insert);
     set_v.compress(VectorOperation::insert);
-    flips = Utilities::MPI::sum(flips, s.mpi_communicator);
-    flips_back = Utilities::MPI::sum(flips_back, s.mpi_communicator);
+    {
+      // one reduction for both counts
+      std::array<unsigned int, 2> counts{{flips, flips_back}};
+      Utilities::MPI::sum(ArrayView<const unsigned int>(counts), s.mpi_communicator,
+                          ArrayView<unsigned int>(counts));
+      flips = counts[0];
+      flips_back = counts[1];
+    }
     if (in_band_start && band)
       band_start_flips += flips;
     else if (in_band_start)
@@ -1024,7 +1034,7 @@ bool JFOSolver::polish()
     // decrease, or stay as many with none of the last round's nodes among them: a cavity
     // boundary that creeps one node per round (on the tilted seal at 1.05e6 dofs, nodes 513
     // apart, one per round for four rounds), where a global round costs a low-rank update
-    // (1.6-2 s) and a band round of 225 dofs ~0.1 s. Band rounds are given up
+    // (1.8-2.5 s) and a band round of 225 dofs ~0.1 s. Band rounds are given up
     // for this polish when the global round after them flips more than the one before them
     // (measured on an under-resolved 2688-dof wavy mesh: they drove the set astray).
     band_in_a_row = band ? band_in_a_row + 1 : 0;
@@ -1034,7 +1044,7 @@ bool JFOSolver::polish()
         band_allowed = false;
       last_global_flips = flips;
     }
-    band = band_allowed && flips > 0 && flips < s.dof_handler.n_dofs() / 20 && band_in_a_row < 10 &&
+    band = band_allowed && flips > 0 && flips < max_band_seeds && band_in_a_row < 10 &&
            (band_in_a_row == 0 || flips < last_flips || (flips == last_flips && flips_back == 0));
     last_flips = flips;
   }

@@ -112,9 +112,9 @@ public:
         {
           id.icntl[29] = 1;
           // right-hand-side columns per block of the pruned solves (ICNTL(27); MUMPS's default
-          // -32 lets it choose up to 32): 256
-          // took 0.64 s against 0.96-1.03 s for the 48 x 640 entries of a low-rank update at
-          // 1.05e6 unknowns (tilted seal), with the same peak memory (doc/performance.md)
+          // -32 lets it choose up to 32): 256 took 0.64 s against 0.96-1.03 s for the 48 x 640
+          // entries of a low-rank update at 1.05e6 unknowns (tilted seal), with the same peak
+          // memory (doc/performance.md "Session 20")
           id.icntl[26] = 256;
           id.nz_rhs = int(entry_row.size());
           id.nrhs = n;
