@@ -8,10 +8,14 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
-#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_Import.h>
 #include <Epetra_LinearProblem.h>
+#include <Epetra_Map.h>
+#include <Epetra_MpiComm.h>
 #include <Teuchos_ParameterList.hpp>
+#include <dmumps_c.h>
+#include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,74 +26,206 @@
 
 namespace sealfe
 {
-namespace
-{
-/// Amesos_Mumps with a solve of several right-hand sides in one MUMPS call (NRHS > 1): Amesos
-/// calls MUMPS once per column of a multivector; and, on several ranks, repeated numeric
-/// factorisations that refresh the values of the redistributed matrix in place. It relies on
-/// Amesos_Mumps's protected members (the MUMPS structure MDS, the redistributed matrix and its
-/// triplets), an implementation detail of the Trilinos version it was written for (Debian 12's
-/// Trilinos 13.2): recheck it when Trilinos changes.
-class BlockMumps : public Amesos_Mumps
+/// MUMPS driven directly through its C interface. Amesos_Mumps, used before, converted the matrix
+/// to triplets row by row through copies and two index look-ups per entry (0.8 s of a 1.9 s
+/// analysis at 1e6 unknowns), and on several ranks redistributed a copy of the matrix before
+/// every factorisation (4 s of 11 s at 1e6 unknowns on two ranks; doc/performance.md "Session
+/// 21"). Here each rank hands MUMPS its own rows of the Trilinos matrix: the row and column
+/// indices once per pattern (on several ranks gathered on the host for the analysis too), the
+/// values straight from the matrix's storage at every factorisation. The MUMPS settings are
+/// those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic column
+/// permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14)).
+class SparseDirect::Mumps
 {
 public:
-  using Amesos_Mumps::Amesos_Mumps;
-
-  /// On several ranks Amesos_Mumps gives MUMPS the matrix redistributed over an even split of
-  /// the rows, and it builds that copy anew (a new Epetra_CrsMatrix, an Import, FillComplete)
-  /// twice per numeric factorisation (once itself, once to read the values): 0.3-0.4 s each at
-  /// 5e5 unknowns, where MUMPS's numeric factorisation itself takes 1.1-1.3 s on two ranks
-  /// (doc/performance.md "MUMPS on several ranks"). A repeated factorisation of a matrix with the
-  /// same pattern (the only kind SparseDirect makes) zeroes the copy it has, adds the matrix into
-  /// it through the same importer and reads the values row by row, in the order of the triplets the
-  /// symbolic analysis read from a copy built the same way: the same values in the same places.
-  int NumericFactorization() override
+  /// A MUMPS instance on A's communicator. Collective.
+  explicit Mumps(const Epetra_CrsMatrix &A) : several_ranks(A.Comm().NumProc() > 1)
   {
-    // (a BlockMumps analyses one pattern: SparseDirect makes a new one for another)
-    if (Comm().NumProc() == 1 || NumNumericFact() == 0 || RedistrMatrix_.is_null() ||
-        !RedistrMatrix_->Filled())
-      return Amesos_Mumps::NumericFactorization();
-    Epetra_CrsMatrix &copy = *RedistrMatrix_;
-    int status = copy.PutScalar(0.0);
-    status += copy.Import(Matrix(), RedistrImporter(), Add);
-    std::size_t count = 0;
-    for (int i = 0; i < copy.NumMyRows() && status == 0; ++i)
+    if (A.NumGlobalRows64() >= std::numeric_limits<int>::max())
+      throw std::runtime_error("Reynolds solver: the matrix is too large for MUMPS's indices");
+    if (!several_ranks && !A.RowMap().LinearMap())
+      throw std::logic_error("SparseDirect: one rank needs the rows in order");
+    const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
+    id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+    id.par = 1; // the host works too
+    id.sym = 0; // unsymmetric
+    id.job = -1;
+    dmumps_c(&id);
+    check("initialisation");
+    for (const int stream : {0, 1, 2, 3})
+      id.icntl[stream] = -1; // no messages: errors come back as INFOG(1) and are thrown
+    id.icntl[5] = 7;         // column permutation (ICNTL(6)) chosen by MUMPS
+    id.icntl[6] = 0;         // AMD ordering: quicker than METIS and MUMPS's choice here
+    id.icntl[7] = 7;         // scaling (ICNTL(8)) chosen by MUMPS
+    id.icntl[13] = 20;       // workspace margin (ICNTL(14)), per cent of the estimate
+    // several ranks: the structure on the host, the entries distributed (ICNTL(18) = 2, analyse)
+    id.icntl[17] = several_ranks ? 2 : 0;
+  }
+
+  /// The analysis (ordering, elimination tree) of A's pattern. Collective.
+  void analyse(const Epetra_CrsMatrix &A)
+  {
+    // this rank's entries as (row, column) 1-based global indices, row by row in the order of the
+    // matrix's storage, in which the values are read at every factorisation
+    std::vector<int> column_index(A.NumMyCols());
+    for (int c = 0; c < A.NumMyCols(); ++c)
+      column_index[c] = static_cast<int>(A.ColMap().GID64(c)) + 1;
+    row.reserve(A.NumMyNonzeros());
+    column.reserve(A.NumMyNonzeros());
+    for (int i = 0; i < A.NumMyRows(); ++i)
     {
-      int n = 0;
-      double *values = nullptr;
-      status += copy.ExtractMyRowView(i, n, values);
-      if (count + n > Val.size())
-        status = -1;
-      else
-        std::copy(values, values + n, Val.begin() + count);
-      count += n;
+      int entries;
+      int *columns;
+      if (A.Graph().ExtractMyRowView(i, entries, columns) != 0)
+        throw std::runtime_error("Reynolds solver: cannot read the matrix rows for MUMPS");
+      const int global_row = static_cast<int>(A.RowMap().GID64(i)) + 1;
+      for (int k = 0; k < entries; ++k)
+      {
+        row.push_back(global_row);
+        column.push_back(column_index[columns[k]]);
+      }
     }
-    if (count != Val.size())
-      status = -1;
-    int failed = status != 0, any_failed = 0;
-    Comm().SumAll(&failed, &any_failed, 1);
-    if (any_failed)
-      return -1;
-    MDS.job = 2;
-    if (Comm().MyPID() < MaxProcs_)
+    id.n = static_cast<int>(A.NumGlobalRows64());
+    // several ranks: the whole structure on the host for the analysis (ICNTL(18) = 2), which
+    // orders it there anyway; each rank's own entries for the factorisations. 1.46 s against
+    // 2.26 s for MUMPS's own gathering of distributed indices (ICNTL(18) = 3) at 1.05e6 unknowns
+    // on two ranks (doc/performance.md "Session 21").
+    std::vector<int> host_row, host_column;
+    if (several_ranks)
     {
-      MDS.a_loc = Val.data();
-      dmumps_c(&MDS);
+      const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
+      const int ranks = A.Comm().NumProc(), mine = static_cast<int>(row.size());
+      std::vector<int> counts(ranks), offsets(ranks + 1, 0);
+      int ierr = MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+      AssertThrowMPI(ierr);
+      for (int r = 0; r < ranks; ++r)
+      {
+        if (offsets[r] > std::numeric_limits<int>::max() - counts[r])
+          throw std::runtime_error("Reynolds solver: too many matrix entries for MUMPS's indices");
+        offsets[r + 1] = offsets[r] + counts[r];
+      }
+      if (A.Comm().MyPID() == 0)
+      {
+        host_row.resize(offsets[ranks]);
+        host_column.resize(offsets[ranks]);
+      }
+      for (auto [mine_indices, host_indices] :
+           {std::pair{&row, &host_row}, std::pair{&column, &host_column}})
+      {
+        ierr = MPI_Gatherv(mine_indices->data(), mine, MPI_INT, host_indices->data(), counts.data(),
+                           offsets.data(), MPI_INT, 0, comm);
+        AssertThrowMPI(ierr);
+      }
+      id.nnz = static_cast<MUMPS_INT8>(host_row.size());
+      id.irn = host_row.data();
+      id.jcn = host_column.data();
+      id.nnz_loc = static_cast<MUMPS_INT8>(row.size());
+      id.irn_loc = row.data();
+      id.jcn_loc = column.data();
+      // the right-hand side and the solution whole on the host (ICNTL(20) = ICNTL(21) = 0)
+      const int host_rows = A.Comm().MyPID() == 0 ? id.n : 0;
+      host_map = std::make_unique<Epetra_Map>(id.n, host_rows, 0, A.Comm());
+      to_host = std::make_unique<Epetra_Import>(*host_map, A.OperatorDomainMap());
     }
-    failed = MDS.infog[0] < 0 || MDS.info[0] < 0;
-    Comm().SumAll(&failed, &any_failed, 1);
-    // (Amesos's status flags are private: they stay those of the first factorisation, which
-    // was complete, and a failure here is an error SparseDirect throws on)
-    return any_failed ? -1 : 0;
+    else
+    {
+      id.nnz = static_cast<MUMPS_INT8>(row.size());
+      id.irn = row.data();
+      id.jcn = column.data();
+    }
+    id.job = 1;
+    dmumps_c(&id);
+    // (the host's copy of the structure is read by the analysis only)
+    id.irn = id.jcn = nullptr;
+    check("analysis");
+  }
+
+  ~Mumps()
+  {
+    id.job = -2;
+    dmumps_c(&id);
+  }
+
+  Mumps(const Mumps &) = delete;
+  Mumps &operator=(const Mumps &) = delete;
+
+  /// The numeric factorisation of A, which has the pattern analysed. Collective.
+  void factorize(const Epetra_CrsMatrix &A)
+  {
+    if (static_cast<std::size_t>(A.NumMyNonzeros()) != row.size())
+      throw std::logic_error("SparseDirect: the matrix pattern changed since the analysis");
+    // MUMPS reads the values in this call only (no iterative refinement, ICNTL(10) = 0), from
+    // the matrix's own array: deal.II's compress() leaves the rows in one (Epetra's optimised
+    // storage), in the order the analysis read the indices in
+    double *storage = nullptr;
+    int *offsets = nullptr, *indices = nullptr;
+    if (!A.StorageOptimized() || A.ExtractCrsDataPointers(offsets, indices, storage) != 0 ||
+        offsets[A.NumMyRows()] != A.NumMyNonzeros())
+      throw std::logic_error("SparseDirect: MUMPS needs the matrix values in one array");
+    (several_ranks ? id.a_loc : id.a) = storage;
+    // a workspace estimate that falls short (INFOG(1) = -8 or -9, possible with the numerical
+    // pivoting) is retried with twice the margin, three times
+    for (int attempt = 0;; ++attempt)
+    {
+      id.job = 2;
+      dmumps_c(&id);
+      const bool short_of_workspace = id.infog[0] == -8 || id.infog[0] == -9;
+      if (!short_of_workspace || attempt == 3)
+        break;
+      id.icntl[13] *= 2;
+    }
+    id.a = id.a_loc = nullptr;
+    check("factorisation");
+  }
+
+  /// x = A^-1 b for every column of b. Collective.
+  void solve(const Epetra_MultiVector &b, Epetra_MultiVector &x)
+  {
+    if (!several_ranks)
+    {
+      for (int j = 0; j < b.NumVectors(); ++j)
+      {
+        std::copy(b[j], b[j] + b.MyLength(), x[j]);
+        solve_phase([&](DMUMPS_STRUC_C &s) { s.rhs = x[j]; }, "solve");
+      }
+      return;
+    }
+    // the columns gathered on the host, solved there in one call, and the solution sent back
+    Epetra_MultiVector on_host(*host_map, b.NumVectors());
+    if (on_host.Import(b, *to_host, Insert) != 0)
+      throw std::runtime_error("Reynolds solver: gathering the right-hand side for MUMPS failed");
+    solve_phase(
+        [&](DMUMPS_STRUC_C &s)
+        {
+          s.nrhs = b.NumVectors();
+          s.lrhs = id.n;
+          s.rhs = on_host.Values(); // on the host (the others hold no rows): n x nrhs, by columns
+        },
+        "solve");
+    if (x.Export(on_host, *to_host, Insert) != 0)
+      throw std::runtime_error("Reynolds solver: scattering the MUMPS solution failed");
+  }
+
+  /// The n x m column-major block X overwritten by A^-1 X (one rank).
+  void solve_block(double *X, const int m)
+  {
+    solve_phase(
+        [&](DMUMPS_STRUC_C &s)
+        {
+          s.nrhs = m;
+          s.lrhs = id.n;
+          s.rhs = X;
+        },
+        "block solve");
   }
 
   /// values[c * rows.size() + p] = (A^-1)(rows[p], columns[c]), columns ascending (one rank).
-  int inverse_entries(const std::vector<unsigned int> &rows,
-                      const std::vector<unsigned int> &columns, std::vector<double> &values)
+  void inverse_entries(const std::vector<unsigned int> &rows,
+                       const std::vector<unsigned int> &columns, std::vector<double> &values)
   {
     // the requested entries as a sparse n x n right-hand side in compressed columns (1-based):
     // every column of the matrix, those not requested empty; the values come back in place
-    const int n = MDS.n;
+    const int n = id.n;
     std::vector<int> column_start(n + 1), entry_row;
     entry_row.reserve(rows.size() * columns.size());
     std::size_t next = 0;
@@ -105,68 +241,77 @@ public:
     }
     column_start[n] = int(entry_row.size()) + 1;
     if (next != columns.size())
-      return -1; // columns not ascending, repeated or out of range
+      throw std::logic_error("SparseDirect: inverse entries' columns not ascending or repeated");
     values.assign(entry_row.size(), 0.0);
-    return solve_phase(
-        [&](DMUMPS_STRUC_C &id)
+    solve_phase(
+        [&](DMUMPS_STRUC_C &s)
         {
-          id.icntl[29] = 1;
+          s.icntl[29] = 1; // selected entries of A^-1 (ICNTL(30))
           // right-hand-side columns per block of the pruned solves (ICNTL(27); MUMPS's default
           // -32 lets it choose up to 32): 256 took 0.64 s against 0.96-1.03 s for the 48 x 640
           // entries of a low-rank update at 1.05e6 unknowns (tilted seal), with the same peak
           // memory (doc/performance.md "Session 20")
-          id.icntl[26] = 256;
-          id.nz_rhs = int(entry_row.size());
-          id.nrhs = n;
-          id.lrhs = n;
-          id.irhs_ptr = column_start.data();
-          id.irhs_sparse = entry_row.data();
-          id.rhs_sparse = values.data();
-        });
-  }
-
-  /// The n x m column-major block X overwritten by A^-1 X (one rank: the host holds it all).
-  int solve_block(double *X, const int n, const int m)
-  {
-    return solve_phase(
-        [&](DMUMPS_STRUC_C &id)
-        {
-          id.nrhs = m;
-          id.lrhs = n;
-          id.rhs = X;
-        });
+          s.icntl[26] = 256;
+          s.nz_rhs = int(entry_row.size());
+          s.nrhs = n;
+          s.lrhs = n;
+          s.irhs_ptr = column_start.data();
+          s.irhs_sparse = entry_row.data();
+          s.rhs_sparse = values.data();
+        },
+        "selected inverse entries");
   }
 
 private:
-  /// One MUMPS solve (job 3) with the right-hand side `set_rhs` describes; the right-hand-side
-  /// fields Amesos set for its own solves are restored afterwards. Returns INFO(1).
+  /// One solve (job 3) with the right-hand side `set_rhs` describes; the solve settings are
+  /// restored afterwards, so that every solve starts from the same ones.
   template <class SetRhs>
-  int solve_phase(SetRhs &&set_rhs)
+  void solve_phase(SetRhs &&set_rhs, const char *what)
   {
-    const DMUMPS_STRUC_C saved = MDS;
-    set_rhs(MDS);
-    MDS.job = 3;
-    dmumps_c(&MDS);
-    const int info = MDS.info[0];
-    MDS.icntl[26] = saved.icntl[26];
-    MDS.icntl[29] = saved.icntl[29];
-    MDS.nz_rhs = saved.nz_rhs;
-    MDS.nrhs = saved.nrhs;
-    MDS.lrhs = saved.lrhs;
-    MDS.rhs = saved.rhs;
-    MDS.irhs_ptr = saved.irhs_ptr;
-    MDS.irhs_sparse = saved.irhs_sparse;
-    MDS.rhs_sparse = saved.rhs_sparse;
-    return info;
+    const DMUMPS_STRUC_C saved = id;
+    set_rhs(id);
+    id.job = 3;
+    dmumps_c(&id);
+    const int status = id.infog[0], detail = id.infog[1];
+    id.icntl[26] = saved.icntl[26];
+    id.icntl[29] = saved.icntl[29];
+    id.nz_rhs = saved.nz_rhs;
+    id.nrhs = saved.nrhs;
+    id.lrhs = saved.lrhs;
+    id.rhs = saved.rhs;
+    id.irhs_ptr = saved.irhs_ptr;
+    id.irhs_sparse = saved.irhs_sparse;
+    id.rhs_sparse = saved.rhs_sparse;
+    throw_on_error(status, detail, what);
   }
+
+  /// INFOG(1) < 0 (the same on every rank) is an error; -10 a singular matrix.
+  void check(const char *what) const { throw_on_error(id.infog[0], id.infog[1], what); }
+
+  static void throw_on_error(const int status, const int detail, const char *what)
+  {
+    if (status >= 0)
+      return;
+    if (status == -10)
+      throw std::runtime_error("Reynolds solver: MUMPS factorisation failed (singular matrix)");
+    throw std::runtime_error(std::string("Reynolds solver: MUMPS ") + what +
+                             " failed (INFOG(1) = " + std::to_string(status) +
+                             ", INFOG(2) = " + std::to_string(detail) + ")");
+  }
+
+  bool several_ranks;
+  DMUMPS_STRUC_C id{};
+  std::vector<int> row, column;         // this rank's entries, 1-based global indices
+  std::unique_ptr<Epetra_Map> host_map; // several ranks: every row on the host
+  std::unique_ptr<Epetra_Import> to_host;
 };
-} // namespace
 
 SparseDirect::SparseDirect() = default;
 SparseDirect::~SparseDirect() = default;
 
 void SparseDirect::clear()
 {
+  mumps.reset();
   solver.reset();
   problem.reset();
   pattern_owner = nullptr;
@@ -179,63 +324,68 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
   // The symbolic analysis (BTF, AMD ordering) depends on the pattern only: a Newton Jacobian
   // assembled into the same matrix object has the same one.
   const bool same_pattern =
-      solver && pattern_owner == &A && pattern_entries == A.NumGlobalNonzeros64();
+      initialized() && pattern_owner == &A && pattern_entries == A.NumGlobalNonzeros64();
   if (!same_pattern)
   {
     clear();
-    problem = std::make_unique<Epetra_LinearProblem>();
-    problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
     // KLU (left-looking, no dense kernels) is quickest on small systems; above a few 1e4
     // unknowns MUMPS's multifrontal factorisation with dense BLAS-3 fronts is 2-7x faster on these
     // 2D meshes (doc/performance.md "Direct solver"). AMD ordering: measured quicker than METIS
     // nested dissection and MUMPS's automatic choice at 2.6e5 and 1e6 unknowns.
     package = A.NumGlobalRows64() < multifrontal_limit ? "KLU" : "MUMPS";
-    Amesos factory;
-    // MUMPS made directly (what the factory does) as BlockMumps, for solve_block
-    if (package == std::string("KLU"))
-      solver.reset(factory.Create("Amesos_Klu", *problem));
+    if (package == std::string("MUMPS"))
+    {
+      mumps = std::make_unique<Mumps>(A);
+      mumps->analyse(A);
+    }
     else
-      solver = std::make_unique<BlockMumps>(*problem);
-    if (!solver)
-      throw std::runtime_error(std::string("Reynolds solver: Amesos ") + package +
-                               " is not available");
-    Teuchos::ParameterList parameters;
-    solver->SetParameters(parameters);
-    if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
-      mumps->SetICNTL(7, 0); // AMD
-    if (solver->SymbolicFactorization() != 0)
-      throw std::runtime_error(std::string("Reynolds solver: ") + package +
-                               " symbolic factorisation failed");
+    {
+      problem = std::make_unique<Epetra_LinearProblem>();
+      problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
+      Amesos factory;
+      solver.reset(factory.Create("Amesos_Klu", *problem));
+      if (!solver)
+        throw std::runtime_error("Reynolds solver: Amesos KLU is not available");
+      Teuchos::ParameterList parameters;
+      solver->SetParameters(parameters);
+      if (solver->SymbolicFactorization() != 0)
+        throw std::runtime_error("Reynolds solver: KLU symbolic factorisation failed");
+    }
     pattern_owner = &A;
     pattern_entries = A.NumGlobalNonzeros64();
   }
   else
     ++reused_symbolic;
-  if (solver->NumericFactorization() != 0)
-    throw std::runtime_error(std::string("Reynolds solver: ") + package +
-                             " factorisation failed (singular matrix)");
+  if (mumps)
+    mumps->factorize(A);
+  else if (solver->NumericFactorization() != 0)
+    throw std::runtime_error("Reynolds solver: KLU factorisation failed (singular matrix)");
 }
 
 void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
                          dealii::TrilinosWrappers::MPI::Vector &x)
 {
+  if (mumps)
+  {
+    mumps->solve(b.trilinos_vector(), x.trilinos_vector());
+    return;
+  }
   problem->SetLHS(&x.trilinos_vector());
   problem->SetRHS(const_cast<Epetra_MultiVector *>(
       static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
   if (solver->Solve() != 0)
-    throw std::runtime_error(std::string("Reynolds solver: ") + package + " solve failed");
+    throw std::runtime_error("Reynolds solver: KLU solve failed");
 }
 
 void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
 {
-  const Epetra_RowMatrix &A = *dynamic_cast<const Epetra_RowMatrix *>(problem->GetOperator());
+  const Epetra_CrsMatrix &A = *pattern_owner;
   const int n = A.NumMyRows();
   if (A.Comm().NumProc() != 1 || X.size() != static_cast<std::size_t>(n) * m)
     throw std::logic_error("SparseDirect::solve_block: one rank, n x m values");
-  if (auto *mumps = dynamic_cast<BlockMumps *>(solver.get()))
+  if (mumps)
   {
-    if (mumps->solve_block(X.data(), n, m) != 0)
-      throw std::runtime_error("Reynolds solver: MUMPS block solve failed");
+    mumps->solve_block(X.data(), m);
     return;
   }
   // KLU: one klu_solve for the whole multivector
@@ -248,15 +398,14 @@ void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
   problem->SetLHS(nullptr);
   problem->SetRHS(nullptr);
   if (status != 0)
-    throw std::runtime_error(std::string("Reynolds solver: ") + package + " solve failed");
+    throw std::runtime_error("Reynolds solver: KLU solve failed");
 }
 
 bool SparseDirect::inverse_entries(const std::vector<unsigned int> &rows,
                                    const std::vector<unsigned int> &columns,
                                    std::vector<double> &values)
 {
-  auto *mumps = dynamic_cast<BlockMumps *>(solver.get());
-  if (!mumps || mumps->Comm().NumProc() != 1)
+  if (!mumps || pattern_owner->Comm().NumProc() != 1)
     return false;
   // MUMPS takes the columns in order: sort them, and put the values back in the caller's order
   std::vector<unsigned int> order(columns.size());
@@ -267,8 +416,7 @@ bool SparseDirect::inverse_entries(const std::vector<unsigned int> &rows,
   for (std::size_t c = 0; c < order.size(); ++c)
     sorted[c] = columns[order[c]];
   std::vector<double> sorted_values;
-  if (mumps->inverse_entries(rows, sorted, sorted_values) != 0)
-    throw std::runtime_error("Reynolds solver: MUMPS selected inverse entries failed");
+  mumps->inverse_entries(rows, sorted, sorted_values);
   const std::size_t m = rows.size();
   values.resize(m * columns.size());
   for (std::size_t c = 0; c < order.size(); ++c)

@@ -490,8 +490,8 @@ TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
 }
 
 // Repeated MUMPS factorisations of a matrix split among the ranks (ctest
-// sparse_direct_band_on_{2,3}_ranks): from the second on, BlockMumps refreshes the values of
-// Amesos's redistributed copy in place instead of rebuilding it. Each factorisation must solve
+// sparse_direct_band_on_{2,3}_ranks): every rank hands MUMPS its own rows, the indices once at
+// the analysis and the values at every factorisation. Each factorisation must solve
 // its own matrix: the normwise backward error |b - A x| / (|A| |x| + |b|) (infinity norms) of a
 // backward-stable LU of this strictly diagonally dominant matrix (no pivot growth) is a few u;
 // 128 u is the bound the JFO polish accepts solves by (JFOSolver's low-rank update). And the

@@ -1,6 +1,6 @@
-// SparseDirect: a sparse LU factorisation (Amesos: KLU for small systems, MUMPS above) that keeps
-// its symbolic analysis (ordering, block structure) across matrices of one sparsity pattern, as
-// the Newton systems of the cavitation models are.
+// SparseDirect: a sparse LU factorisation (KLU through Amesos for small systems, MUMPS driven
+// directly above) that keeps its symbolic analysis (ordering, block structure) across matrices of
+// one sparsity pattern, as the Newton systems of the cavitation models are.
 #pragma once
 
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -16,9 +16,8 @@ class Epetra_CrsMatrix;
 
 namespace sealfe
 {
-/// KLU or MUMPS through Amesos. factorize() of a matrix with the pattern of the previous one (the
-/// same Trilinos matrix object, unchanged number of entries) repeats only the numeric
-/// factorisation.
+/// KLU (Amesos) or MUMPS. factorize() of a matrix with the pattern of the previous one (the same
+/// Trilinos matrix object, unchanged number of entries) repeats only the numeric factorisation.
 class SparseDirect
 {
 public:
@@ -34,8 +33,8 @@ public:
   void solve(const dealii::TrilinosWrappers::MPI::Vector &b,
              dealii::TrilinosWrappers::MPI::Vector &x);
   /// X = A^-1 X for `m` right-hand sides at once (one rank; X holds n x m values column by
-  /// column, n the matrix size). MUMPS solves the block in one call (its triangular solves then
-  /// work on blocks of columns), where Amesos would call it once per column.
+  /// column, n the matrix size), in one call of the solver (MUMPS's triangular solves then work on
+  /// blocks of columns).
   void solve_block(std::vector<double> &X, unsigned int m);
   /// Selected entries of A^-1 with the last factorisation: values[c * rows.size() + p] =
   /// (A^-1)(rows[p], columns[c]). MUMPS's selected-entries solve (ICNTL(30)), which prunes
@@ -45,13 +44,17 @@ public:
   bool inverse_entries(const std::vector<unsigned int> &rows,
                        const std::vector<unsigned int> &columns, std::vector<double> &values);
   void clear();
-  bool initialized() const { return static_cast<bool>(solver); }
+  bool initialized() const { return solver || mumps; }
   /// Factorisations that reused the symbolic analysis of an earlier one.
   unsigned int numeric_only() const { return reused_symbolic; }
   /// "KLU" or "MUMPS": the package of the last factorisation ("" before the first).
   const char *package_name() const { return package; }
 
 private:
+  /// MUMPS driven directly (sparse_direct.cc)
+  class Mumps;
+  std::unique_ptr<Mumps> mumps;
+  /// KLU through Amesos
   std::unique_ptr<Epetra_LinearProblem> problem;
   std::unique_ptr<Amesos_BaseSolver> solver;
   const Epetra_CrsMatrix *pattern_owner = nullptr;
