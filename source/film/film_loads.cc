@@ -500,41 +500,54 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   Vector<double> cell_p(dofs_per_cell);
   std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
   const std::vector<bool> leakage_cell = leakage_cells();
-  // The residual of the cells on the circles with the values their system was assembled with
-  // (polar_assembly), so that the leakages of the solved p are its round-off, not the
-  // difference of two cell geometries' round-off times the flow.
+  // Every cell with the values its system was assembled with (polar_assembly): in the cells on
+  // the circles the leakages of the solved p are then its round-off, not the difference of two
+  // cell geometries' round-off times the flow; and a polar row's cells take their values from the
+  // row's first cell instead of a mapping of their own (0.35 s instead of 1.0 s for the loads of
+  // a JFO solution at 1e6 unknowns, doc/performance.md "Session 21").
   std::optional<PolarCellValues> polar;
   if (polar_assembly())
     polar.emplace(*s.mapping, *s.fe, quadrature);
-  Vector<double> cell_v(dofs_per_cell), cell_d(dofs_per_cell);
+  Vector<double> cell_d(dofs_per_cell);
+  // values and gradients at the quadrature points of a nodal vector in the current cell
+  auto evaluate = [&](const bool turned, const auto &cell, const VectorType &nodal,
+                      std::vector<double> &values, std::vector<Tensor<1, 2>> *gradients)
+  {
+    if (turned)
+    {
+      cell->get_dof_values(nodal, cell_d);
+      polar->get_function_values(cell_d, values);
+      if (gradients)
+        polar->get_function_gradients(cell_d, *gradients);
+    }
+    else
+    {
+      fe_values.get_function_values(nodal, values);
+      if (gradients)
+        fe_values.get_function_gradients(nodal, *gradients);
+    }
+  };
 
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      fe_values.reinit(cell);
-      fe_values.get_function_values(s.locally_relevant_solution, p);
-      fe_values.get_function_gradients(s.locally_relevant_solution, grad_p);
+      const bool turned = polar && polar->reinit(cell);
+      if (!turned)
+        fe_values.reinit(cell);
+      evaluate(turned, cell, s.locally_relevant_solution, p, &grad_p);
       if (jfo)
-      {
-        fe_values.get_function_values(s.locally_relevant_void, v);
-        fe_values.get_function_gradients(s.locally_relevant_void, grad_v);
-      }
+        evaluate(turned, cell, s.locally_relevant_void, v, &grad_v);
       for (unsigned int k = 0; k < n_k; ++k)
       {
         if (k < dp_nodal.size() && dp_nodal[k])
-        {
-          fe_values.get_function_values(*dp_nodal[k], dp_k[k]);
-          fe_values.get_function_gradients(*dp_nodal[k], grad_dp_k[k]);
-        }
+          evaluate(turned, cell, *dp_nodal[k], dp_k[k], &grad_dp_k[k]);
         if (k < dv_nodal.size() && dv_nodal[k])
-        {
-          fe_values.get_function_values(*dv_nodal[k], dv_k[k]);
-          fe_values.get_function_gradients(*dv_nodal[k], grad_dv_k[k]);
-        }
+          evaluate(turned, cell, *dv_nodal[k], dv_k[k], &grad_dv_k[k]);
         local_residual_k[k] = 0;
       }
       if (base && nonlinear)
-        fe_values.get_function_values(indicator_nodal, indicator);
+        evaluate(turned, cell, indicator_nodal, indicator, nullptr);
+      auto JxW = [&](const unsigned int q) { return turned ? polar->JxW(q) : fe_values.JxW(q); };
       if (undershoot)
       {
         cell->get_dof_values(s.locally_relevant_solution, cell_p);
@@ -545,30 +558,37 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
           near_cavity.push_back(cell);
         else
           for (unsigned int q = 0; q < n_q; ++q)
-            sums[0][15] += std::min(p[q] - p_cav, 0.0) * fe_values.JxW(q);
+            sums[0][15] += std::min(p[q] - p_cav, 0.0) * JxW(q);
       }
       PointState x;
       x.tau = jfo ? s.streamline_tau(cell) : 0.0;
       // the residual enters the sums only through the leakages (leakage_cells)
       const bool on_circle = leakage_cell[cell->active_cell_index()];
-      const bool turned = on_circle && polar && polar->reinit(cell);
-      const bool boundary_cell = on_circle && !turned; // residual from fe_values below
       cell->get_dof_indices(dofs);
       for (unsigned int q = 0; q < n_q; ++q)
       {
-        x.x = fe_values.quadrature_point(q);
-        x.f = s.local_film(x.x);
-        x.JxW = fe_values.JxW(q);
+        if (turned)
+        {
+          // the film the assembly took there (film_matrices: the row's radius and angle)
+          x.x = polar->quadrature_point(q);
+          x.f = s.local_film(x.x, polar->radius(q), polar->angle(q), cos_psi, sin_psi);
+        }
+        else
+        {
+          x.x = fe_values.quadrature_point(q);
+          x.f = s.local_film(x.x);
+        }
+        x.JxW = JxW(q);
         x.p = p[q];
         x.v = v[q];
         x.indicator = indicator[q];
         x.grad_p = grad_p[q];
         x.grad_v = grad_v[q];
-        if (boundary_cell)
+        if (on_circle)
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
           {
-            shape_grad[i] = fe_values.shape_grad(i, q);
-            shape_value[i] = fe_values.shape_value(i, q);
+            shape_grad[i] = turned ? polar->shape_grad(i, q) : fe_values.shape_grad(i, q);
+            shape_value[i] = turned ? polar->shape_value(i, q) : fe_values.shape_value(i, q);
           }
         if (base)
         {
@@ -590,70 +610,8 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
           d.grad_dv = grad_dv_k[k][q];
           add_pressure_loads(x, d, sums[k]);
           add_friction_and_squeeze(x, d, sums[k]);
-          if (boundary_cell)
+          if (on_circle)
             add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
-        }
-      }
-      if (turned)
-      {
-        // the same terms with the turned row values and the film the assembly took at them
-        // (film_matrices: the row's radius and angle); jfo: the void fraction and the cell's
-        // streamline parameter (x.tau, set above) as in its G. The point values of the loop
-        // above are done with: p, grad_p, ... take the rows' (those without a nodal vector keep
-        // their zeros).
-        cell->get_dof_values(s.locally_relevant_solution, cell_p);
-        polar->get_function_values(cell_p, p);
-        polar->get_function_gradients(cell_p, grad_p);
-        if (jfo)
-        {
-          cell->get_dof_values(s.locally_relevant_void, cell_v);
-          polar->get_function_values(cell_v, v);
-          polar->get_function_gradients(cell_v, grad_v);
-        }
-        for (unsigned int k = 0; k < n_k; ++k)
-        {
-          if (k < dp_nodal.size() && dp_nodal[k])
-          {
-            cell->get_dof_values(*dp_nodal[k], cell_d);
-            polar->get_function_values(cell_d, dp_k[k]);
-            polar->get_function_gradients(cell_d, grad_dp_k[k]);
-          }
-          if (k < dv_nodal.size() && dv_nodal[k])
-          {
-            cell->get_dof_values(*dv_nodal[k], cell_d);
-            polar->get_function_values(cell_d, dv_k[k]);
-            polar->get_function_gradients(cell_d, grad_dv_k[k]);
-          }
-        }
-        for (unsigned int q = 0; q < n_q; ++q)
-        {
-          x.x = polar->quadrature_point(q);
-          x.f = s.local_film(x.x, polar->radius(q), polar->angle(q), cos_psi, sin_psi);
-          x.JxW = polar->JxW(q);
-          x.p = p[q];
-          x.v = v[q];
-          x.grad_p = grad_p[q];
-          x.grad_v = grad_v[q];
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          {
-            shape_grad[i] = polar->shape_grad(i, q);
-            shape_value[i] = polar->shape_value(i, q);
-          }
-          for (unsigned int k = 0; k < n_k; ++k)
-          {
-            PointPerturbation d;
-            d.direction = perturbations[k];
-            if (d.direction)
-            {
-              d.dh = d.direction->dh ? d.direction->dh(x.f.r, x.f.theta) : 0.0;
-              d.dh_t = perturbation_squeeze(*d.direction, x.f.r, x.f.theta, w_frame);
-            }
-            d.dp = dp_k[k][q];
-            d.dv = dv_k[k][q];
-            d.grad_dp = grad_dp_k[k][q];
-            d.grad_dv = grad_dv_k[k][q];
-            add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
-          }
         }
       }
       if (on_circle)

@@ -273,7 +273,9 @@ TEST(PolarCellValues, JfoLeakagesBalanceToRoundOffAndLoadsEqualTheFEValuesPath)
     EXPECT_NEAR(a.moment_x, b.moment_x, tol * F * ro) << tilted_seal;
     EXPECT_NEAR(a.moment_y, b.moment_y, tol * F * ro) << tilted_seal;
     EXPECT_NEAR(a.leakage_outer, b.leakage_outer, tol * Q_s) << tilted_seal;
-    EXPECT_EQ(a.cavitated_fraction, b.cavitated_fraction) << tilted_seal;
+    // the same cavitated set: its area moves by the JxW's round-off only (integrate takes the
+    // rows' JxW too), where a node more or less moves it by about a cell's share (1/512 here)
+    EXPECT_NEAR(a.cavitated_fraction, b.cavitated_fraction, tol) << tilted_seal;
   }
 }
 
@@ -305,7 +307,7 @@ TEST(PolarCellValues, ReynoldsCavitationLoadsEqualTheFEValuesPath)
   EXPECT_NEAR(a.moment_y, b.moment_y, tol * F * ro);
   EXPECT_NEAR(a.leakage_inner, b.leakage_inner, tol * Q_s);
   EXPECT_NEAR(a.leakage_outer, b.leakage_outer, tol * Q_s);
-  EXPECT_EQ(a.cavitated_fraction, b.cavitated_fraction);
+  EXPECT_NEAR(a.cavitated_fraction, b.cavitated_fraction, tol); // the same set (test above)
 }
 
 // A cell that is not its row's first cell turned (one vertex moved) must be refused, or, if the

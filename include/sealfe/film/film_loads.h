@@ -135,8 +135,9 @@ private:
   std::vector<bool> leakage_cells() const;
   /// Whether the solved system was assembled with PolarCellValues (ReynoldsSolver::
   /// assembles_on_polar_rows: the full film, the JFO cell matrices and the reynolds model's
-  /// system on the built-in annulus): the leakage residual and the linearised right-hand sides
-  /// then take them too.
+  /// system on the built-in annulus): the loads integrated cell by cell (integrate: the
+  /// cavitation models, the linearised loads), the leakage residual and the linearised
+  /// right-hand sides then take them too.
   bool polar_assembly() const;
   /// Adds a cell residual's entries at the dofs on the inner and outer circle to the leakage
   /// sums (sum[5], sum[6]).
