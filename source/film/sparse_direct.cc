@@ -43,8 +43,8 @@ public:
   {
     if (A.NumGlobalRows64() >= std::numeric_limits<int>::max())
       throw std::runtime_error("Reynolds solver: the matrix is too large for MUMPS's indices");
-    if (!several_ranks && !A.RowMap().LinearMap())
-      throw std::logic_error("SparseDirect: one rank needs the rows in order");
+    if (!several_ranks && !(A.RowMap().LinearMap() && A.RowMap().MinAllGID64() == 0))
+      throw std::logic_error("SparseDirect: one rank needs the rows in order from 0");
     const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
     id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
     id.par = 1; // the host works too
@@ -96,7 +96,8 @@ public:
       const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
       const int ranks = A.Comm().NumProc(), mine = static_cast<int>(row.size());
       std::vector<int> counts(ranks), offsets(ranks + 1, 0);
-      int ierr = MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+      // (every rank learns the counts, so that all of them refuse a too large matrix together)
+      int ierr = MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
       AssertThrowMPI(ierr);
       for (int r = 0; r < ranks; ++r)
       {
@@ -122,7 +123,8 @@ public:
       id.nnz_loc = static_cast<MUMPS_INT8>(row.size());
       id.irn_loc = row.data();
       id.jcn_loc = column.data();
-      // the right-hand side and the solution whole on the host (ICNTL(20) = ICNTL(21) = 0)
+      // the right-hand side and the solution whole on the host (ICNTL(20) = ICNTL(21) = 0); one
+      // importer for both, the matrix being square with its range map its domain map (deal.II)
       const int host_rows = A.Comm().MyPID() == 0 ? id.n : 0;
       host_map = std::make_unique<Epetra_Map>(id.n, host_rows, 0, A.Comm());
       to_host = std::make_unique<Epetra_Import>(*host_map, A.OperatorDomainMap());
@@ -135,8 +137,11 @@ public:
     }
     id.job = 1;
     dmumps_c(&id);
-    // (the host's copy of the structure is read by the analysis only)
-    id.irn = id.jcn = nullptr;
+    // (with ICNTL(18) = 2 the structure on the host is read by the analysis only, where on one
+    // rank MUMPS reads the rows and columns again at every factorisation: `row` and `column`
+    // live as long as this instance)
+    if (several_ranks)
+      id.irn = id.jcn = nullptr;
     check("analysis");
   }
 
@@ -152,19 +157,25 @@ public:
   /// The numeric factorisation of A, which has the pattern analysed. Collective.
   void factorize(const Epetra_CrsMatrix &A)
   {
-    if (static_cast<std::size_t>(A.NumMyNonzeros()) != row.size())
-      throw std::logic_error("SparseDirect: the matrix pattern changed since the analysis");
     // MUMPS reads the values in this call only (no iterative refinement, ICNTL(10) = 0), from
     // the matrix's own array: deal.II's compress() leaves the rows in one (Epetra's optimised
     // storage), in the order the analysis read the indices in
     double *storage = nullptr;
     int *offsets = nullptr, *indices = nullptr;
-    if (!A.StorageOptimized() || A.ExtractCrsDataPointers(offsets, indices, storage) != 0 ||
-        offsets[A.NumMyRows()] != A.NumMyNonzeros())
-      throw std::logic_error("SparseDirect: MUMPS needs the matrix values in one array");
+    int pattern_kept = static_cast<std::size_t>(A.NumMyNonzeros()) == row.size() &&
+                       A.StorageOptimized() &&
+                       A.ExtractCrsDataPointers(offsets, indices, storage) == 0 &&
+                       offsets[A.NumMyRows()] == A.NumMyNonzeros();
+    // (on every rank, before the collective call)
+    int everywhere = 0;
+    A.Comm().MinAll(&pattern_kept, &everywhere, 1);
+    if (!everywhere)
+      throw std::logic_error("SparseDirect: the matrix pattern or storage changed since the "
+                             "analysis");
     (several_ranks ? id.a_loc : id.a) = storage;
     // a workspace estimate that falls short (INFOG(1) = -8 or -9, possible with the numerical
-    // pivoting) is retried with twice the margin, three times
+    // pivoting) is retried with twice the margin, three times; the margin found stays for the
+    // later factorisations
     for (int attempt = 0;; ++attempt)
     {
       id.job = 2;
@@ -183,9 +194,12 @@ public:
   {
     if (!several_ranks)
     {
+      if (b.MyLength() != id.n || x.MyLength() != id.n || x.NumVectors() != b.NumVectors())
+        throw std::logic_error("SparseDirect::solve: b and x must have the matrix's rows");
       for (int j = 0; j < b.NumVectors(); ++j)
       {
-        std::copy(b[j], b[j] + b.MyLength(), x[j]);
+        if (x[j] != b[j])
+          std::copy(b[j], b[j] + b.MyLength(), x[j]);
         solve_phase([&](DMUMPS_STRUC_C &s) { s.rhs = x[j]; }, "solve");
       }
       return;
@@ -335,8 +349,10 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     package = A.NumGlobalRows64() < multifrontal_limit ? "KLU" : "MUMPS";
     if (package == std::string("MUMPS"))
     {
-      mumps = std::make_unique<Mumps>(A);
-      mumps->analyse(A);
+      // kept only once analysed: a SparseDirect whose analysis failed holds no factorisation
+      auto analysed = std::make_unique<Mumps>(A);
+      analysed->analyse(A);
+      mumps = std::move(analysed);
     }
     else
     {
