@@ -503,8 +503,9 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   // Every cell with the values its system was assembled with (polar_assembly): in the cells on
   // the circles the leakages of the solved p are then its round-off, not the difference of two
   // cell geometries' round-off times the flow; and a polar row's cells take their values from the
-  // row's first cell instead of a mapping of their own (0.35 s instead of 1.0 s for the loads of
-  // a JFO solution at 1e6 unknowns, doc/performance.md "Session 21").
+  // row's first cell instead of a mapping of their own (0.82-0.89 s instead of 1.13-1.45 s for
+  // the loads of the tilted seal's JFO solution at 1.05e6 unknowns, doc/performance.md "Session
+  // 21").
   std::optional<PolarCellValues> polar;
   if (polar_assembly())
     polar.emplace(*s.mapping, *s.fe, quadrature);
