@@ -75,8 +75,8 @@ struct FischerBurmeister
 // system stays N x N with the sparsity of the pressure matrix; unlike the universal variable, a
 // node near the cavity boundary sees both its pressure and its void derivative, which is what
 // lets the active set settle. Globalised by backtracking on 1/2 (|R|^2 + |phi|^2).
-JFOSolver::JFOSolver(ReynoldsSolver &solver, const double flow_scale)
-    : s(solver), flow_scale(flow_scale), best_merit(std::numeric_limits<double>::max())
+JFOSolver::JFOSolver(ReynoldsSolver &solver)
+    : s(solver), best_merit(std::numeric_limits<double>::max())
 {
   const IndexSet &owned = s.locally_owned_dofs, &relevant = s.locally_relevant_dofs;
   const MPI_Comm comm = s.mpi_communicator;
@@ -664,6 +664,11 @@ void JFOSolver::warm_start()
   s.jfo_band_start_failed = started_coarse && !band_first;
   if (!started_coarse)
   {
+    // the full film, assembled only here (ReynoldsSolver::run), from zero: system_rhs holds the
+    // right-hand side from the cell matrices already (ReynoldsSolver::full_film_flow_scale)
+    s.system_matrix = 0;
+    s.system_rhs = 0;
+    s.assemble_system();
     s.solve();
     s.pressure_scale = s.full_film_pressure_scale();
     for (const auto i : s.locally_owned_dofs)
@@ -1130,6 +1135,7 @@ void JFOSolver::solve()
     TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
     s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
   }
+  flow_scale = s.full_film_flow_scale(cell_A, cell_F);
   warm_start();
   unsigned int next_polish = 0, polish_gap = 1;
   double mass_residual = 0, complementarity_residual = 0;

@@ -16,10 +16,7 @@ namespace sealfe
 {
 using namespace dealii;
 
-ReynoldsCavitationSolver::ReynoldsCavitationSolver(ReynoldsSolver &solver, const double flow_scale)
-    : s(solver), flow_scale(flow_scale)
-{
-}
+ReynoldsCavitationSolver::ReynoldsCavitationSolver(ReynoldsSolver &solver) : s(solver) {}
 
 void ReynoldsCavitationSolver::mass_residual(const VectorType &u, const bool with_jacobian,
                                              VectorType &rhs)
@@ -108,6 +105,11 @@ void ReynoldsCavitationSolver::start(VectorType &u_owned)
   const bool sequenced = sequenced_start && s.coarse_level_state(coarse_pressure, coarse_void);
   if (!sequenced)
   {
+    // the full film, assembled only here (ReynoldsSolver::run), from zero: system_rhs holds the
+    // right-hand side from the cell matrices already (ReynoldsSolver::full_film_flow_scale)
+    s.system_matrix = 0;
+    s.system_rhs = 0;
+    s.assemble_system();
     s.solve();
     s.pressure_scale = s.full_film_pressure_scale();
   }
@@ -123,9 +125,10 @@ void ReynoldsCavitationSolver::start(VectorType &u_owned)
 ReynoldsCavitationSolver::Complementarity
 ReynoldsCavitationSolver::complementarity_at_solution(ReynoldsSolver &solver)
 {
-  ReynoldsCavitationSolver c(solver, std::max(solver.system_rhs.l2_norm(), 1e-300));
+  ReynoldsCavitationSolver c(solver);
   ReynoldsSolver &s = solver;
   s.compute_cell_matrices(false, c.cell_A, c.cell_G, c.cell_F);
+  c.flow_scale = s.full_film_flow_scale(c.cell_A, c.cell_F);
   VectorType u_owned(s.locally_owned_dofs, s.mpi_communicator),
       rhs(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)
@@ -154,6 +157,7 @@ void ReynoldsCavitationSolver::solve()
     TimerOutput::Scope timer_scope(s.timer, "reynolds cell matrices");
     s.compute_cell_matrices(false, cell_A, cell_G, cell_F);
   }
+  flow_scale = s.full_film_flow_scale(cell_A, cell_F);
   s.reynolds_diagonal.reinit(s.locally_owned_dofs, s.mpi_communicator);
   TrilinosWrappers::MPI::Vector u_owned(s.locally_owned_dofs, s.mpi_communicator);
   start(u_owned);

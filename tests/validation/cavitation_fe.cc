@@ -197,7 +197,7 @@ TEST(CavitationFE, JfoGlobalMatricesAreTheAssemblyOfTheCellMatrices)
   {
     ReynoldsSolver solver(MPI_COMM_WORLD);
     solve(film, conditions, Cavitation::jfo, 4, 64, degree, &solver);
-    JFOSolver jfo(solver, 1.0);
+    JFOSolver jfo(solver);
     const JFOSolver::GlobalMatricesAndAssembly m = jfo.global_matrices_and_assembly();
     // Dirichlet constraints only: there on one rank and on several (each rank's rows, summed
     // over the ranks by the system matrix; ctest cavitation_fe_on_2_ranks, _3_)
@@ -263,7 +263,7 @@ TEST(CavitationFE, JfoJacobianByColumnsGivesTheCellLoopsLinearisedLoads)
   const std::vector<FilmPerturbation> directions = {{tilt_x, {}}, {{}, tilt_x}};
   const std::vector<FilmLoads> of_solve = solver.linearized_loads(directions);
 
-  JFOSolver jfo(solver, 1.0);
+  JFOSolver jfo(solver);
   const JFOSolver::GlobalMatricesAndAssembly global = jfo.global_matrices_and_assembly();
   ASSERT_FALSE(global.PA.empty());
   double T = 0;

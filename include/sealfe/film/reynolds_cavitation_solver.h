@@ -23,8 +23,7 @@ class ReynoldsCavitationSolver
 public:
   using VectorType = dealii::TrilinosWrappers::MPI::Vector;
 
-  /// `flow_scale`: the size of the full-film right-hand side, the scale of the mass residual.
-  ReynoldsCavitationSolver(ReynoldsSolver &solver, double flow_scale);
+  explicit ReynoldsCavitationSolver(ReynoldsSolver &solver);
   /// Throws std::runtime_error if the iteration does not converge.
   void solve();
 
@@ -55,7 +54,9 @@ private:
   void start(VectorType &u_owned);
 
   ReynoldsSolver &s;
-  const double flow_scale;
+  /// The scale of the mass residual: the size of the full-film right-hand side (set by solve(),
+  /// ReynoldsSolver::full_film_flow_scale).
+  double flow_scale = 1;
   /// The film matrices A and F of every cell (ReynoldsSolver::compute_cell_matrices): the
   /// problem is linear in p, so they serve every iteration.
   std::vector<dealii::FullMatrix<double>> cell_A, cell_G;

@@ -247,6 +247,12 @@ private:
   void compute_cell_matrices(bool with_void, std::vector<dealii::FullMatrix<double>> &A,
                              std::vector<dealii::FullMatrix<double>> &G,
                              std::vector<dealii::Vector<double>> &F) const;
+  /// The cavitation models' scale of the mass residual, the size of the full-film right-hand
+  /// side: system_rhs as assemble_system() makes it (the same sums in the same order), from the
+  /// cell matrices `A`, `F` of compute_cell_matrices instead of a second pass over the film. run()
+  /// does not assemble the full film for them; they assemble it only where they solve it.
+  double full_film_flow_scale(const std::vector<dealii::FullMatrix<double>> &A,
+                              const std::vector<dealii::Vector<double>> &F);
   /// Mesh sequencing of the cavitation models: solves the same problem on the mesh twice as
   /// coarse (coarse_solver, itself sequenced) and gives its pressure and void fraction at this
   /// mesh's owned dofs (by owned index; the constrained dofs their boundary pressure and no
