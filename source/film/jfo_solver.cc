@@ -664,8 +664,8 @@ void JFOSolver::warm_start()
   s.jfo_band_start_failed = started_coarse && !band_first;
   if (!started_coarse)
   {
-    // the full film, assembled only here (ReynoldsSolver::run), from zero: system_rhs holds the
-    // right-hand side from the cell matrices already (ReynoldsSolver::full_film_flow_scale)
+    // the full film, assembled here only (not in ReynoldsSolver::run), from zero: system_rhs
+    // holds the right-hand side from the cell matrices already (full_film_flow_scale)
     s.system_matrix = 0;
     s.system_rhs = 0;
     s.assemble_system();
@@ -1278,6 +1278,22 @@ JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
                  { values->insert(values->end(), row_values, row_values + entries); });
   }
   return m;
+}
+
+std::pair<std::vector<double>, std::vector<double>> JFOSolver::full_film_rhs_both_ways()
+{
+  const std::size_t n = s.locally_owned_dofs.n_elements();
+  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
+  s.full_film_flow_scale(cell_A, cell_F);
+  const double *from_cells = owned_values(s.system_rhs);
+  std::pair<std::vector<double>, std::vector<double>> rhs;
+  rhs.first.assign(from_cells, from_cells + n);
+  s.system_matrix = 0;
+  s.system_rhs = 0;
+  s.assemble_system();
+  const double *assembled = owned_values(s.system_rhs);
+  rhs.second.assign(assembled, assembled + n);
+  return rhs;
 }
 
 std::vector<double> JFOSolver::jacobian_at_solution(const bool by_columns)

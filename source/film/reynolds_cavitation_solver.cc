@@ -105,8 +105,8 @@ void ReynoldsCavitationSolver::start(VectorType &u_owned)
   const bool sequenced = sequenced_start && s.coarse_level_state(coarse_pressure, coarse_void);
   if (!sequenced)
   {
-    // the full film, assembled only here (ReynoldsSolver::run), from zero: system_rhs holds the
-    // right-hand side from the cell matrices already (ReynoldsSolver::full_film_flow_scale)
+    // the full film, assembled here only (not in ReynoldsSolver::run), from zero: system_rhs
+    // holds the right-hand side from the cell matrices already (full_film_flow_scale)
     s.system_matrix = 0;
     s.system_rhs = 0;
     s.assemble_system();
@@ -128,7 +128,10 @@ ReynoldsCavitationSolver::complementarity_at_solution(ReynoldsSolver &solver)
   ReynoldsCavitationSolver c(solver);
   ReynoldsSolver &s = solver;
   s.compute_cell_matrices(false, c.cell_A, c.cell_G, c.cell_F);
-  c.flow_scale = s.full_film_flow_scale(c.cell_A, c.cell_F);
+  // the solve left the full-film right-hand side in system_rhs (full_film_flow_scale, or the
+  // assembly of the coarsest level); computing it again here would add the constrained cells'
+  // terms to the system matrix, which holds the Jacobian at the solution
+  c.flow_scale = std::max(s.system_rhs.l2_norm(), 1e-300);
   VectorType u_owned(s.locally_owned_dofs, s.mpi_communicator),
       rhs(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)

@@ -266,7 +266,8 @@ double ReynoldsSolver::full_film_flow_scale(const std::vector<FullMatrix<double>
   // adds it: a cell without constrained dofs adds its F (by position where the matrix has
   // CellSparsity's pattern), the others go through the constraints with their A (the Dirichlet
   // values' columns, and the diagonal of the constrained rows); that distribution adds those
-  // cells' terms to system_matrix too, whose values the cavitation models replace.
+  // cells' terms to system_matrix too: called before the cavitation models make their matrices,
+  // which replace its values (never after a solve, when it holds the Jacobian at the solution).
   system_rhs = 0;
   std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
   for (const auto &cell : dof_handler.active_cell_iterators())

@@ -233,6 +233,37 @@ TEST(CavitationFE, JfoGlobalMatricesAreTheAssemblyOfTheCellMatrices)
   }
 }
 
+TEST(CavitationFE, FlowScaleFromTheCellMatricesIsTheFullFilmAssembly)
+{
+  // The cavitation models no longer assemble the full film where they start from the coarse
+  // level; the right-hand side they scale their mass residual by is made from their cell
+  // matrices A and F (ReynoldsSolver::full_film_flow_scale) with the full-film assembly's
+  // additions in its order: the same cell terms (film_matrices computes A and F alike with and
+  // without the void terms), the cells without constrained dofs by position, the others through
+  // the constraints. So every entry must be the same bits as assemble_system()'s (a signed zero
+  // counts as a difference). Degrees 1 and 2, a cavitating (wavy) case; on 1, 2 and 3 ranks
+  // (ctest cavitation_fe_on_2_ranks, _3_), where each rank compares its own rows.
+  const FilmThickness film = wavy_film();
+  const OperatingConditions conditions = low_pressure();
+  for (const unsigned int degree : {1u, 2u})
+  {
+    ReynoldsSolver solver(MPI_COMM_WORLD);
+    solve(film, conditions, Cavitation::jfo, 4, 64, degree, &solver);
+    JFOSolver jfo(solver);
+    const auto [from_cells, assembled] = jfo.full_film_rhs_both_ways();
+    ASSERT_EQ(from_cells.size(), assembled.size());
+    std::size_t different_bits = 0, nonzero = 0;
+    for (std::size_t i = 0; i < assembled.size(); ++i)
+    {
+      different_bits += std::memcmp(&from_cells[i], &assembled[i], sizeof(double)) != 0;
+      nonzero += assembled[i] != 0;
+    }
+    EXPECT_GT(dealii::Utilities::MPI::sum(double(nonzero), MPI_COMM_WORLD),
+              0.0); // not a comparison of zeros
+    EXPECT_EQ(different_bits, 0u) << "degree " << degree << ": of " << assembled.size();
+  }
+}
+
 TEST(CavitationFE, JfoJacobianByColumnsGivesTheCellLoopsLinearisedLoads)
 {
   // This case converges at the residual-only check after a successful polish, so its Jacobian at

@@ -7,13 +7,15 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <utility>
 #include <vector>
 
 namespace sealfe
 {
 class ReynoldsSolver;
 
-/// Solves, on the mesh, dofs and matrix of `solver` (whose full-film solution is the start), for
+/// Solves, on the mesh, dofs and matrix of `solver` (starting from the coarse level's solution,
+/// or on the coarsest level from the full film, which it solves then), for
 /// the nodal a_j = (p_j - p_cav)/P >= 0 and void fraction v_j >= 0 with a_j v_j = 0 and the
 /// discrete mass balance (doc/cavitation.md, and the comment above ReynoldsSolver's
 /// cell_film_matrices). Leaves the pressure and void fraction, the factorised Jacobian at the
@@ -61,6 +63,11 @@ public:
   /// as solve() leaves it; returns its values in storage order (empty where by columns does not
   /// apply, or where the solution's a, v from its pressure do not give the stored elimination).
   std::vector<double> jacobian_at_solution(bool by_columns);
+  /// Test hook (tests/validation/cavitation_fe.cc): on a solver after a run, this rank's owned
+  /// entries of the full-film right-hand side made from the cell matrices (ReynoldsSolver::
+  /// full_film_flow_scale, as solve() makes it) and by assemble_system(), in that order; leaves
+  /// the full-film system in the solver.
+  std::pair<std::vector<double>, std::vector<double>> full_film_rhs_both_ways();
 
 private:
   /// Assemble the residual (and the reduced Newton system) at (a, v); returns the merit

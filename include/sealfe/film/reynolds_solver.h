@@ -242,8 +242,8 @@ private:
                      const std::function<void(unsigned int, const LocalFilm &)> &at_point) const;
   /// The cavitation models' film matrices A, G, F of every locally owned cell (by active cell
   /// index): they depend on the film only, so each solve computes them once for all its
-  /// iterations (cavitation_levels.cc). `with_void`: G too (JFO); without it G stays empty and A
-  /// has the full-film assembly's bits (the Reynolds model).
+  /// iterations (cavitation_levels.cc). `with_void`: G too (JFO); without it G stays empty. A and F
+  /// have the full-film assembly's bits either way (full_film_flow_scale relies on it).
   void compute_cell_matrices(bool with_void, std::vector<dealii::FullMatrix<double>> &A,
                              std::vector<dealii::FullMatrix<double>> &G,
                              std::vector<dealii::Vector<double>> &F) const;
