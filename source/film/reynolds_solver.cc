@@ -757,7 +757,7 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   // (mesh sequencing) and assemble and solve the full film only where that start is not
   // available (JFOSolver::warm_start, ReynoldsCavitationSolver::start); the right-hand side they
   // scale their residual by comes from their own cell matrices (full_film_flow_scale). The
-  // assembly here was 0.8 of 19-24 s at 1.05e6 dofs, tilted JFO.
+  // assembly here took 0.62-0.82 s of 19-24 s at 1.05e6 dofs (tilted JFO, session 22).
   if (cavitation.is_nonlinear())
     affine_loads.reset(false, 0, 0); // no full-film load sums
   else
