@@ -136,9 +136,10 @@ void FilmLinearSolver::build_preconditioner()
     // KLU keeps its ordering while the matrix keeps its pattern (the Newton Jacobians of a
     // cavitation solve are assembled into one matrix).
     amg.reset();
-    const unsigned int before = direct.numeric_only();
+    const unsigned int before = direct.numeric_only(), retries_before = direct.workspace_retries();
     direct.factorize(*matrix);
     stats.symbolic_reuses += direct.numeric_only() - before;
+    stats.workspace_retries += direct.workspace_retries() - retries_before;
     return;
   }
   direct.clear();

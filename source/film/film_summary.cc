@@ -270,7 +270,8 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
       {"krylov_iterations", linear.statistics().krylov_iterations},
       {"max_krylov_iterations", linear.statistics().max_krylov_iterations},
       {"symbolic_reuses", linear.statistics().symbolic_reuses},
-      {"reused_preconditioners", linear.statistics().reused_preconditioners}};
+      {"reused_preconditioners", linear.statistics().reused_preconditioners},
+      {"workspace_retries", linear.statistics().workspace_retries}};
   summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
   // Discrete mass balance: what leaves through the two circles plus the squeeze flow, relative
   // to a flow scale that vanishes only with every driving term (zero to solver tolerance for none

@@ -1,6 +1,7 @@
 #include <sealfe/film/jfo_krylov.h>
 #include <sealfe/film/jfo_solver.h>
 
+#include <sealfe/film/band_round_rule.h>
 #include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
@@ -924,11 +925,8 @@ bool JFOSolver::polish()
   // 4 layers: measured 1.17 s against 1.12 s (2 layers) on the tilted 64 x 128 case, 0.88 s
   // against 1.19 s on wavy_jfo 16 x 512; 0 layers (the flipped nodes only) took 19 rounds
   constexpr unsigned int band_layers = 4;
-  unsigned int global_rounds = 0, band_in_a_row = 0;
-  // (max: band rounds from the start continue while their flips decrease)
-  unsigned int last_flips = std::numeric_limits<unsigned int>::max(),
-               last_global_flips = std::numeric_limits<unsigned int>::max();
-  bool band_allowed = true;
+  unsigned int global_rounds = 0;
+  BandRoundRule band_rule(max_band_seeds);
   for (unsigned int round = 0; global_rounds < 40 && round < 400 && !consistent; ++round)
   {
     ta = set_a;
@@ -1034,24 +1032,9 @@ bool JFOSolver::polish()
     // A start for the next finer mesh (mesh sequencing) needs no global check.
     // (a band round before any global round holds values interpolated from the coarse level)
     consistent = (!band || (s.start_only && global_rounds > 0)) && flips == 0;
-    // At most 10 band rounds between global rounds (a set that keeps changing far from the last
-    // flips is found faster by global rounds), and band rounds continue only while their flips
-    // decrease, or stay as many with none of the last round's nodes among them: a cavity
-    // boundary that creeps one node per round (on the tilted seal at 1.05e6 dofs, nodes 513
-    // apart, one per round for four rounds), where a global round costs a low-rank update
-    // (1.8-2.5 s) and a band round of 225 dofs ~0.1 s. Band rounds are given up
-    // for this polish when the global round after them flips more than the one before them
-    // (measured on an under-resolved 2688-dof wavy mesh: they drove the set astray).
-    band_in_a_row = band ? band_in_a_row + 1 : 0;
-    if (!band)
-    {
-      if (flips > last_global_flips)
-        band_allowed = false;
-      last_global_flips = flips;
-    }
-    band = band_allowed && flips > 0 && flips < max_band_seeds && band_in_a_row < 10 &&
-           (band_in_a_row == 0 || flips < last_flips || (flips == last_flips && flips_back == 0));
-    last_flips = flips;
+    // band or global next (band_round_rule.h: at most 10 band rounds in a row, going on while
+    // their flips fall or a front creeps; none after a global round that flipped more)
+    band = band_rule.next_is_band(band, flips, flips_back);
   }
   if (consistent)
   {

@@ -34,7 +34,8 @@ namespace sealfe
 /// indices once per pattern (on several ranks gathered on the host for the analysis too), the
 /// values straight from the matrix's storage at every factorisation. The MUMPS settings are
 /// those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic column
-/// permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14)).
+/// permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
+/// SparseDirect::initial_workspace_margin).
 class SparseDirect::Mumps
 {
 public:
@@ -57,7 +58,7 @@ public:
     id.icntl[5] = 7;         // column permutation (ICNTL(6)) chosen by MUMPS
     id.icntl[6] = 0;         // AMD ordering: quicker than METIS and MUMPS's choice here
     id.icntl[7] = 7;         // scaling (ICNTL(8)) chosen by MUMPS
-    id.icntl[13] = 20;       // workspace margin (ICNTL(14)), per cent of the estimate
+    id.icntl[13] = initial_workspace_margin; // ICNTL(14), per cent of the estimate
     // several ranks: the structure on the host, the entries distributed (ICNTL(18) = 2, analyse)
     id.icntl[17] = several_ranks ? 2 : 0;
   }
@@ -173,21 +174,36 @@ public:
       throw std::logic_error("SparseDirect: the matrix pattern or storage changed since the "
                              "analysis");
     (several_ranks ? id.a_loc : id.a) = storage;
-    // a workspace estimate that falls short (INFOG(1) = -8 or -9, possible with the numerical
-    // pivoting) is retried with twice the margin, three times; the margin found stays for the
-    // later factorisations
+    // a workspace estimate that falls short (INFOG(1) = -8 or -9: the numerical pivoting delays
+    // more pivots than the analysis of the pattern foresaw) is retried with twice the margin,
+    // three times (20 % up to 160 %); the margin found stays for the later factorisations of the
+    // pattern. The factorisation is the one the final margin would have made at once: the
+    // margin sizes the workspace, not the operations.
+    bool short_of_workspace = false;
     for (int attempt = 0;; ++attempt)
     {
       id.job = 2;
       dmumps_c(&id);
-      const bool short_of_workspace = id.infog[0] == -8 || id.infog[0] == -9;
-      if (!short_of_workspace || attempt == 3)
+      short_of_workspace = id.infog[0] == -8 || id.infog[0] == -9;
+      if (!short_of_workspace || attempt == max_workspace_retries)
         break;
       id.icntl[13] *= 2;
+      ++workspace_retries;
     }
     id.a = id.a_loc = nullptr;
+    if (short_of_workspace)
+      throw std::runtime_error(
+          "Reynolds solver: MUMPS factorisation ran out of workspace even with " +
+          std::to_string(id.icntl[13]) + " % more than its estimate (INFOG(1) = " +
+          std::to_string(id.infog[0]) + ", INFOG(2) = " + std::to_string(id.infog[1]) +
+          "): its numerical pivoting needs far more fill than the analysis of the pattern "
+          "foresaw");
     check("factorisation");
   }
+
+  /// Factorisations repeated with a larger workspace margin, since this instance was made.
+  unsigned int workspace_retries = 0;
+  static constexpr int max_workspace_retries = 3;
 
   /// x = A^-1 b for every column of b. Collective.
   void solve(const Epetra_MultiVector &b, Epetra_MultiVector &x)
@@ -323,8 +339,15 @@ private:
 SparseDirect::SparseDirect() = default;
 SparseDirect::~SparseDirect() = default;
 
+unsigned int SparseDirect::workspace_retries() const
+{
+  return retried_workspace + (mumps ? mumps->workspace_retries : 0);
+}
+
 void SparseDirect::clear()
 {
+  if (mumps)
+    retried_workspace += mumps->workspace_retries;
   mumps.reset();
   solver.reset();
   problem.reset();

@@ -407,6 +407,119 @@ TEST(SparseDirect, LowRankUpdateRefusesASingularChange)
   }
 }
 
+namespace
+{
+/// GridMatrix's m x m matrix with columns j and j + N/2 exchanged for j < k: nonsingular (a column
+/// permutation of a nonsingular matrix), with zero diagonals in its rows j and j + N/2, j < k.
+/// MUMPS's analysis orders the pattern without the values, so those pivots are delayed in the
+/// numerical factorisation, which then needs more workspace than the analysis estimated: on 150 x
+/// 150, measured with MUMPS 5.5 (the 20 % margin doubled each time), k = 3000 needs 40 %, 5000 80
+/// %, 8000 160 %, N/2 320 %.
+struct SwappedColumns
+{
+  GridMatrix g;
+  TrilinosWrappers::SparseMatrix A;
+  SwappedColumns(const unsigned int m, const unsigned int k) : g(m)
+  {
+    const unsigned int N = m * m, h = N / 2;
+    const auto column = [&](const unsigned int j)
+    { return j < k ? j + h : (j >= h && j < h + k ? j - h : j); };
+    DynamicSparsityPattern pattern(N, N);
+    for (unsigned int i = 0; i < N; ++i)
+      for (const auto &[j, value] : g.row(i))
+        pattern.add(i, column(j));
+    const IndexSet all = complete_index_set(N);
+    A.reinit(all, all, pattern, MPI_COMM_SELF);
+    for (unsigned int i = 0; i < N; ++i)
+      for (const auto &[j, value] : g.row(i))
+        A.set(i, column(j), value);
+    A.compress(VectorOperation::insert);
+  }
+};
+} // namespace
+
+// A factorisation whose numerical pivoting outgrows MUMPS's workspace estimate (INFOG(1) = -9) is
+// repeated with twice the margin until it fits (at most three times). The claims:
+// - the retried factorisation is the one the final margin makes at once (the margin sizes the
+//   workspace, not the operations): the same solution to the bit;
+// - it is a factorisation of this matrix: one step of fixed-precision iterative refinement with
+//   it brings the normwise backward error to the level of round-off (Skeel 1980; a factorisation
+//   of other values would not converge). Without refinement this matrix's threshold pivoting
+//   (14 000 delayed pivots) leaves about 1e-9;
+// - the margin found stays, so the next factorisation of the pattern needs no retry.
+// The matrix is chosen to need two retries (SwappedColumns); the test fails if a later MUMPS
+// needs none, because then it no longer exercises the retry.
+TEST(SparseDirect, MumpsRetriesAFactorisationThatOutgrowsItsWorkspaceEstimate)
+{
+  const unsigned int m = 150, N = m * m; // 22 500 unknowns: MUMPS
+  SwappedColumns s(m, 5000);
+  std::vector<double> b(N);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = std::sin(0.37 * i) + 0.5;
+  SparseDirect lu;
+  lu.factorize(s.A);
+  ASSERT_STREQ(lu.package_name(), "MUMPS");
+  const unsigned int retries = lu.workspace_retries();
+  ASSERT_GE(retries, 1u) << "this matrix no longer outgrows the workspace estimate";
+  EXPECT_LE(retries, 3u);
+  std::vector<double> x(b);
+  lu.solve_block(x, 1);
+
+  // the final margin from the start: no retry, the same solution
+  const int default_margin = SparseDirect::initial_workspace_margin;
+  SparseDirect::initial_workspace_margin = default_margin << retries;
+  SparseDirect at_once;
+  at_once.factorize(s.A);
+  SparseDirect::initial_workspace_margin = default_margin;
+  EXPECT_EQ(at_once.workspace_retries(), 0u);
+  std::vector<double> y(b);
+  at_once.solve_block(y, 1);
+  EXPECT_EQ(x, y);
+
+  // one step of iterative refinement: x += (LU)^-1 (b - A x)
+  const double eta = backward_error(s.A, x, b);
+  const IndexSet all = complete_index_set(N);
+  TrilinosWrappers::MPI::Vector xv(all, MPI_COMM_SELF), Ax(all, MPI_COMM_SELF);
+  for (unsigned int i = 0; i < N; ++i)
+    xv[i] = x[i];
+  s.A.vmult(Ax, xv);
+  std::vector<double> correction(N);
+  for (unsigned int i = 0; i < N; ++i)
+    correction[i] = b[i] - Ax[i];
+  lu.solve_block(correction, 1);
+  for (unsigned int i = 0; i < N; ++i)
+    x[i] += correction[i];
+  const double eta_refined = backward_error(s.A, x, b);
+  std::cout << retries << " workspace retries; backward error " << eta << ", after one step of "
+            << "refinement " << eta_refined << "\n";
+  EXPECT_LE(eta_refined, 8 * std::numeric_limits<double>::epsilon());
+
+  lu.factorize(s.A); // the same pattern: the kept margin suffices
+  EXPECT_EQ(lu.workspace_retries(), retries);
+  EXPECT_EQ(lu.numeric_only(), 1u);
+}
+
+// When even the largest margin (160 %) falls short, the factorisation says so in one message that
+// names the workspace, instead of MUMPS's bare error code.
+TEST(SparseDirect, MumpsSaysSoWhenTheLargestWorkspaceMarginFallsShort)
+{
+  SwappedColumns s(150, 150 * 150 / 2); // needs 320 % (measured)
+  SparseDirect lu;
+  try
+  {
+    lu.factorize(s.A);
+    FAIL() << "the factorisation fitted into 160 % more workspace: the test needs a harder matrix";
+  }
+  catch (const std::runtime_error &e)
+  {
+    EXPECT_NE(
+        std::string(e.what()).find("MUMPS factorisation ran out of workspace even with 160 %"),
+        std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(lu.workspace_retries(), 3u);
+}
+
 // The band solve of the JFO polish on a matrix split among the ranks (ctest
 // sparse_direct_band_on_{2,3}_ranks; on one rank the same check is trivially the serial path):
 // the band grown from seeds that different ranks own is the band grown in the whole graph, and

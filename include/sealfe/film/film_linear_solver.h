@@ -54,6 +54,7 @@ public:
     unsigned int krylov_iterations = 0; // CG or GMRES iterations, all solves
     unsigned int max_krylov_iterations = 0;
     unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
+    unsigned int workspace_retries = 0; // MUMPS factorisations repeated with a larger workspace
   };
 
   /// Below this many unknowns `auto` factorises symmetric systems on one rank (and on several

@@ -25,6 +25,10 @@ public:
   /// crossover on the annulus meshes is between 1.7e4 and 6.7e4 unknowns.
   static constexpr long long multifrontal_limit = 20000;
 
+  /// MUMPS's workspace margin (ICNTL(14), per cent of the estimate of its analysis) for the
+  /// first factorisation of a pattern; doubled up to three times where it falls short (tests).
+  static inline int initial_workspace_margin = 20;
+
   SparseDirect();
   ~SparseDirect();
   /// Factorise `matrix` (kept by reference until the next factorize() or clear()).
@@ -47,6 +51,9 @@ public:
   bool initialized() const { return solver || mumps; }
   /// Factorisations that reused the symbolic analysis of an earlier one.
   unsigned int numeric_only() const { return reused_symbolic; }
+  /// MUMPS factorisations repeated with twice the workspace margin (its estimate from the
+  /// analysis of the pattern fell short: numerical pivoting), since this object was made.
+  unsigned int workspace_retries() const;
   /// "KLU" or "MUMPS": the package of the last factorisation ("" before the first).
   const char *package_name() const { return package; }
 
@@ -59,7 +66,7 @@ private:
   std::unique_ptr<Amesos_BaseSolver> solver;
   const Epetra_CrsMatrix *pattern_owner = nullptr;
   long long pattern_entries = -1;
-  unsigned int reused_symbolic = 0;
+  unsigned int reused_symbolic = 0, retried_workspace = 0;
   const char *package = "";
 };
 
