@@ -30,9 +30,10 @@ namespace sealfe
 /// to triplets row by row through copies and two index look-ups per entry (0.8 s of a 1.9 s
 /// analysis at 1e6 unknowns), and on several ranks redistributed a copy of the matrix before
 /// every factorisation (4 s of 11 s at 1e6 unknowns on two ranks; doc/performance.md "Session
-/// 21"). Here each rank hands MUMPS its own rows of the Trilinos matrix: the row and column
-/// indices once per pattern (on several ranks gathered on the host for the analysis too), the
-/// values straight from the matrix's storage at every factorisation. The MUMPS settings are
+/// 21"). Here each rank reads its own rows of the Trilinos matrix: the row and column indices
+/// once per pattern, the values straight from the matrix's storage at every factorisation; on
+/// several ranks both are gathered on the host (MPI_Gatherv), in the same order. The MUMPS
+/// settings are
 /// those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic column
 /// permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
 /// SparseDirect::initial_workspace_margin).
@@ -59,8 +60,8 @@ public:
     id.icntl[6] = 0;         // AMD ordering: quicker than METIS and MUMPS's choice here
     id.icntl[7] = 7;         // scaling (ICNTL(8)) chosen by MUMPS
     id.icntl[13] = initial_workspace_margin; // ICNTL(14), per cent of the estimate
-    // several ranks: the structure on the host, the entries distributed (ICNTL(18) = 2, analyse)
-    id.icntl[17] = several_ranks ? 2 : 0;
+    // the matrix on the host (ICNTL(18) = 0), also on several ranks (analyse, factorize)
+    id.icntl[17] = 0;
   }
 
   /// The analysis (ordering, elimination tree) of A's pattern. Collective.
@@ -87,43 +88,51 @@ public:
       }
     }
     id.n = static_cast<int>(A.NumGlobalRows64());
-    // several ranks: the whole structure on the host for the analysis (ICNTL(18) = 2), which
-    // orders it there anyway; each rank's own entries for the factorisations. 1.46 s against
-    // 2.26 s for MUMPS's own gathering of distributed indices (ICNTL(18) = 3) at 1.05e6 unknowns
-    // on two ranks (doc/performance.md "Session 21").
-    std::vector<int> host_row, host_column;
+    // Several ranks: the whole matrix on the host (ICNTL(18) = 0), its structure gathered here
+    // once and its values at every factorisation; MUMPS then sends the workers their parts. With
+    // the entries distributed instead (ICNTL(18) = 2 or 3) the analysis comes out as with the
+    // column permutation option off (ICNTL(6) = 0, which is defined for a matrix on the host
+    // only): the same estimated flops and factor size, measured, and about 1.5x the flops of this
+    // one. On a 1e6-unknown five-point grid matrix 6.2e10 against 4.2e10 flops, factorised in
+    // 5.8-6.1 s against 4.0-4.5 s on two ranks (doc/performance.md "Session 23").
     if (several_ranks)
     {
       const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
       const int ranks = A.Comm().NumProc(), mine = static_cast<int>(row.size());
-      std::vector<int> counts(ranks), offsets(ranks + 1, 0);
+      host_counts.assign(ranks, 0);
+      host_offsets.assign(ranks + 1, 0);
       // (every rank learns the counts, so that all of them refuse a too large matrix together)
-      int ierr = MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+      int ierr = MPI_Allgather(&mine, 1, MPI_INT, host_counts.data(), 1, MPI_INT, comm);
       AssertThrowMPI(ierr);
       for (int r = 0; r < ranks; ++r)
       {
-        if (offsets[r] > std::numeric_limits<int>::max() - counts[r])
+        if (host_offsets[r] > std::numeric_limits<int>::max() - host_counts[r])
           throw std::runtime_error("Reynolds solver: too many matrix entries for MUMPS's indices");
-        offsets[r + 1] = offsets[r] + counts[r];
+        host_offsets[r + 1] = host_offsets[r] + host_counts[r];
       }
+      std::vector<int> host_row, host_column;
       if (A.Comm().MyPID() == 0)
       {
-        host_row.resize(offsets[ranks]);
-        host_column.resize(offsets[ranks]);
+        host_row.resize(host_offsets[ranks]);
+        host_column.resize(host_offsets[ranks]);
+        host_values.resize(host_offsets[ranks]);
       }
       for (auto [mine_indices, host_indices] :
            {std::pair{&row, &host_row}, std::pair{&column, &host_column}})
       {
-        ierr = MPI_Gatherv(mine_indices->data(), mine, MPI_INT, host_indices->data(), counts.data(),
-                           offsets.data(), MPI_INT, 0, comm);
+        ierr = MPI_Gatherv(mine_indices->data(), mine, MPI_INT, host_indices->data(),
+                           host_counts.data(), host_offsets.data(), MPI_INT, 0, comm);
         AssertThrowMPI(ierr);
       }
-      id.nnz = static_cast<MUMPS_INT8>(host_row.size());
-      id.irn = host_row.data();
-      id.jcn = host_column.data();
-      id.nnz_loc = static_cast<MUMPS_INT8>(row.size());
-      id.irn_loc = row.data();
-      id.jcn_loc = column.data();
+      // this rank's indices are no longer needed (the values' order is that of the storage,
+      // checked by its size at every factorisation); the host keeps the whole structure, which
+      // MUMPS reads at every factorisation to distribute the values
+      row_entries = row.size();
+      row = std::move(host_row);
+      column = std::move(host_column);
+      id.nnz = static_cast<MUMPS_INT8>(row.size());
+      id.irn = row.data();
+      id.jcn = column.data();
       // the right-hand side and the solution whole on the host (ICNTL(20) = ICNTL(21) = 0); one
       // importer for both, the matrix being square with its range map its domain map (deal.II)
       const int host_rows = A.Comm().MyPID() == 0 ? id.n : 0;
@@ -132,17 +141,15 @@ public:
     }
     else
     {
+      row_entries = row.size();
       id.nnz = static_cast<MUMPS_INT8>(row.size());
       id.irn = row.data();
       id.jcn = column.data();
     }
     id.job = 1;
     dmumps_c(&id);
-    // (with ICNTL(18) = 2 the structure on the host is read by the analysis only, where on one
-    // rank MUMPS reads the rows and columns again at every factorisation: `row` and `column`
-    // live as long as this instance)
-    if (several_ranks)
-      id.irn = id.jcn = nullptr;
+    // (MUMPS reads the rows and columns again at every factorisation: `row` and `column` live as
+    // long as this instance)
     check("analysis");
   }
 
@@ -163,7 +170,7 @@ public:
     // storage), in the order the analysis read the indices in
     double *storage = nullptr;
     int *offsets = nullptr, *indices = nullptr;
-    int pattern_kept = static_cast<std::size_t>(A.NumMyNonzeros()) == row.size() &&
+    int pattern_kept = static_cast<std::size_t>(A.NumMyNonzeros()) == row_entries &&
                        A.StorageOptimized() &&
                        A.ExtractCrsDataPointers(offsets, indices, storage) == 0 &&
                        offsets[A.NumMyRows()] == A.NumMyNonzeros();
@@ -173,7 +180,18 @@ public:
     if (!everywhere)
       throw std::logic_error("SparseDirect: the matrix pattern or storage changed since the "
                              "analysis");
-    (several_ranks ? id.a_loc : id.a) = storage;
+    if (several_ranks)
+    {
+      // the values to the host, in the order of the structure gathered there
+      const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
+      const int ierr =
+          MPI_Gatherv(storage, static_cast<int>(row_entries), MPI_DOUBLE, host_values.data(),
+                      host_counts.data(), host_offsets.data(), MPI_DOUBLE, 0, comm);
+      AssertThrowMPI(ierr);
+      id.a = A.Comm().MyPID() == 0 ? host_values.data() : nullptr;
+    }
+    else
+      id.a = storage;
     // a workspace estimate that falls short (INFOG(1) = -8 or -9: the numerical pivoting delays
     // more pivots than the analysis of the pattern foresaw) is retried with twice the margin,
     // three times (20 % up to 160 %); the margin found stays for the later factorisations of the
@@ -190,7 +208,7 @@ public:
       id.icntl[13] *= 2;
       ++workspace_retries;
     }
-    id.a = id.a_loc = nullptr;
+    id.a = nullptr;
     if (short_of_workspace)
       throw std::runtime_error(
           "Reynolds solver: MUMPS factorisation ran out of workspace even with " +
@@ -331,7 +349,13 @@ private:
 
   bool several_ranks;
   DMUMPS_STRUC_C id{};
-  std::vector<int> row, column;         // this rank's entries, 1-based global indices
+  // 1-based global indices of the entries: one rank its own; several ranks the whole matrix's
+  // on the host (empty on the others)
+  std::vector<int> row, column;
+  std::size_t row_entries = 0; // this rank's entries
+  // several ranks: the entries of each rank on the host (counts, offsets), and their values there
+  std::vector<int> host_counts, host_offsets;
+  std::vector<double> host_values;
   std::unique_ptr<Epetra_Map> host_map; // several ranks: every row on the host
   std::unique_ptr<Epetra_Import> to_host;
 };
