@@ -94,7 +94,7 @@ public:
     // column permutation option off (ICNTL(6) = 0, which is defined for a matrix on the host
     // only): the same estimated flops and factor size, measured, and about 1.5x the flops of this
     // one. On a 1e6-unknown five-point grid matrix 6.2e10 against 4.2e10 flops, factorised in
-    // 5.8-6.1 s against 4.0-4.5 s on two ranks (doc/performance.md "Session 23").
+    // 5.8-6.5 s against 3.9-5.1 s on two ranks (doc/performance.md "Session 23").
     if (several_ranks)
     {
       const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
