@@ -33,8 +33,7 @@ namespace sealfe
 /// 21"). Here each rank reads its own rows of the Trilinos matrix: the row and column indices
 /// once per pattern, the values straight from the matrix's storage at every factorisation; on
 /// several ranks both are gathered on the host (MPI_Gatherv), in the same order. The MUMPS
-/// settings are
-/// those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic column
+/// settings are those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic column
 /// permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
 /// SparseDirect::initial_workspace_margin).
 class SparseDirect::Mumps
@@ -89,15 +88,18 @@ public:
     }
     id.n = static_cast<int>(A.NumGlobalRows64());
     // Several ranks: the whole matrix on the host (ICNTL(18) = 0), its structure gathered here
-    // once and its values at every factorisation; MUMPS then sends the workers their parts. With
-    // the entries distributed instead (ICNTL(18) = 2 or 3) the analysis comes out as with the
-    // column permutation option off (ICNTL(6) = 0, which is defined for a matrix on the host
-    // only): the same estimated flops and factor size, measured, and about 1.5x the flops of this
-    // one. On a 1e6-unknown five-point grid matrix 6.2e10 against 4.2e10 flops, factorised in
-    // 5.8-6.5 s against 3.9-5.1 s on two ranks (doc/performance.md "Session 23").
+    // once and its values at every factorisation; MUMPS then sends the workers their parts (the
+    // host keeps ~16 bytes per entry: 0.3 GB at 1.05e6 Q2 dofs). The column permutation option
+    // (ICNTL(6) = 7) needs the matrix on the host: with the entries distributed (ICNTL(18) = 2)
+    // the analysis came out as with ICNTL(6) = 0 (the same estimated flops and factor size,
+    // measured), 1.5x the flops on a 1e6-unknown grid matrix (6.2e10 against 4.2e10) and 1.19x
+    // on the tilted seal's finest JFO Jacobian at 1.05e6 dofs (6.41e10 against 5.37e10; doc/
+    // performance.md "Session 23").
     if (several_ranks)
     {
       const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
+      if (row.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        throw std::runtime_error("Reynolds solver: too many matrix entries for MUMPS's indices");
       const int ranks = A.Comm().NumProc(), mine = static_cast<int>(row.size());
       host_counts.assign(ranks, 0);
       host_offsets.assign(ranks + 1, 0);

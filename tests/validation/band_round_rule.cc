@@ -39,6 +39,7 @@ std::vector<bool> next_is_band(const std::vector<Round> &rounds)
 
 TEST(BandRoundRule, BandRoundsFromTheStartGoOnWhileTheirFlipsFall)
 {
+  // the trace's first two counts, then illustrative ones (the trace gives "1257, 591, ..., 1, 0")
   EXPECT_EQ(next_is_band({{true, 1257, 0}, {true, 591, 0}, {true, 80, 0}, {true, 1, 0}}),
             (std::vector<bool>{true, true, true, true}));
   // none flipped: a global round checks the set
