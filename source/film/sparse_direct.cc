@@ -33,8 +33,8 @@ namespace sealfe
 /// 21"). Here each rank reads its own rows of the Trilinos matrix: the row and column indices
 /// once per pattern, the values straight from the matrix's storage at every factorisation; on
 /// several ranks both are gathered on the host (MPI_Gatherv), in the same order. The MUMPS
-/// settings are those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic column
-/// permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
+/// settings are those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic
+/// column permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
 /// SparseDirect::initial_workspace_margin).
 class SparseDirect::Mumps
 {
