@@ -98,9 +98,11 @@ public:
     if (several_ranks)
     {
       const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
-      if (row.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-        throw std::runtime_error("Reynolds solver: too many matrix entries for MUMPS's indices");
-      const int ranks = A.Comm().NumProc(), mine = static_cast<int>(row.size());
+      // (-1: more entries on this rank than an int counts; refused below on every rank)
+      const int ranks = A.Comm().NumProc(),
+                mine = row.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())
+                           ? -1
+                           : static_cast<int>(row.size());
       host_counts.assign(ranks, 0);
       host_offsets.assign(ranks + 1, 0);
       // (every rank learns the counts, so that all of them refuse a too large matrix together)
@@ -108,7 +110,8 @@ public:
       AssertThrowMPI(ierr);
       for (int r = 0; r < ranks; ++r)
       {
-        if (host_offsets[r] > std::numeric_limits<int>::max() - host_counts[r])
+        if (host_counts[r] < 0 ||
+            host_offsets[r] > std::numeric_limits<int>::max() - host_counts[r])
           throw std::runtime_error("Reynolds solver: too many matrix entries for MUMPS's indices");
         host_offsets[r + 1] = host_offsets[r] + host_counts[r];
       }
