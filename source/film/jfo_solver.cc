@@ -665,10 +665,7 @@ void JFOSolver::warm_start()
   s.jfo_band_start_failed = started_coarse && !band_first;
   if (!started_coarse)
   {
-    // the full film, assembled here only (not in ReynoldsSolver::run), from zero: system_rhs
-    // holds the right-hand side from the cell matrices already (full_film_flow_scale)
-    s.system_matrix = 0;
-    s.system_rhs = 0;
+    // the full film, assembled here only (not in ReynoldsSolver::run)
     s.assemble_system();
     s.solve();
     s.pressure_scale = s.full_film_pressure_scale();
@@ -1271,8 +1268,6 @@ std::pair<std::vector<double>, std::vector<double>> JFOSolver::full_film_rhs_bot
   const double *from_cells = owned_values(s.system_rhs);
   std::pair<std::vector<double>, std::vector<double>> rhs;
   rhs.first.assign(from_cells, from_cells + n);
-  s.system_matrix = 0;
-  s.system_rhs = 0;
   s.assemble_system();
   const double *assembled = owned_values(s.system_rhs);
   rhs.second.assign(assembled, assembled + n);

@@ -105,10 +105,7 @@ void ReynoldsCavitationSolver::start(VectorType &u_owned)
   const bool sequenced = sequenced_start && s.coarse_level_state(coarse_pressure, coarse_void);
   if (!sequenced)
   {
-    // the full film, assembled here only (not in ReynoldsSolver::run), from zero: system_rhs
-    // holds the right-hand side from the cell matrices already (full_film_flow_scale)
-    s.system_matrix = 0;
-    s.system_rhs = 0;
+    // the full film, assembled here only (not in ReynoldsSolver::run)
     s.assemble_system();
     s.solve();
     s.pressure_scale = s.full_film_pressure_scale();

@@ -69,10 +69,10 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   TimerOutput::Scope t(timer, "setup");
   if (setup_settings && settings.same_discretization(*setup_settings, coarsening, setup_coarsening))
   {
-    // Same mesh and dofs: only the Dirichlet data (boundary pressures) may have changed.
+    // Same mesh and dofs: only the Dirichlet data (boundary pressures) may have changed. (The
+    // matrix and right-hand side are made from zero by whoever fills them: assemble_system,
+    // full_film_flow_scale, the cavitation models.)
     setup_constraints();
-    system_matrix = 0;
-    system_rhs = 0;
     return;
   }
   LapTimer lap(setup_detail);
@@ -192,6 +192,10 @@ void ReynoldsSolver::setup_constraints()
 void ReynoldsSolver::assemble_system()
 {
   TimerOutput::Scope t(timer, "assemble");
+  // from zero: the matrix and right-hand side may hold another system (a repeated run on the same
+  // mesh, or the cavitation models' flow scale and Jacobians)
+  system_matrix = 0;
+  system_rhs = 0;
   // h is not polynomial in x, y (cos theta, r): one Gauss point more than the element needs. The
   // load/residual integration uses the same rule, so that the interior residuals vanish to solver
   // tolerance and the leakages balance.

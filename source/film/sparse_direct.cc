@@ -40,13 +40,14 @@ class SparseDirect::Mumps
 {
 public:
   /// A MUMPS instance on A's communicator. Collective.
-  explicit Mumps(const Epetra_CrsMatrix &A) : several_ranks(A.Comm().NumProc() > 1)
+  explicit Mumps(const Epetra_CrsMatrix &A)
+      : several_ranks(A.Comm().NumProc() > 1),
+        comm(dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm())
   {
     if (A.NumGlobalRows64() >= std::numeric_limits<int>::max())
       throw std::runtime_error("Reynolds solver: the matrix is too large for MUMPS's indices");
     if (!several_ranks && !(A.RowMap().LinearMap() && A.RowMap().MinAllGID64() == 0))
       throw std::logic_error("SparseDirect: one rank needs the rows in order from 0");
-    const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
     id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
     id.par = 1; // the host works too
     id.sym = 0; // unsymmetric
@@ -97,7 +98,6 @@ public:
     // performance.md "Session 23").
     if (several_ranks)
     {
-      const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
       // (-1: more entries on this rank than an int counts; refused below on every rank)
       const int ranks = A.Comm().NumProc(),
                 mine = row.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())
@@ -188,7 +188,6 @@ public:
     if (several_ranks)
     {
       // the values to the host, in the order of the structure gathered there
-      const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm();
       const int ierr =
           MPI_Gatherv(storage, static_cast<int>(row_entries), MPI_DOUBLE, host_values.data(),
                       host_counts.data(), host_offsets.data(), MPI_DOUBLE, 0, comm);
@@ -353,6 +352,7 @@ private:
   }
 
   bool several_ranks;
+  MPI_Comm comm; // A's, for the gathers on the host
   DMUMPS_STRUC_C id{};
   // 1-based global indices of the entries: one rank its own; several ranks the whole matrix's
   // on the host (empty on the others)
