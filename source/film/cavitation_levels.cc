@@ -170,6 +170,8 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
   const auto &coarse_work = coarse.linear_system_solver.statistics();
   coarse_factorizations = coarse_work.factorizations + coarse.coarse_factorizations;
   coarse_krylov_iterations = coarse_work.krylov_iterations + coarse.coarse_krylov_iterations;
+  coarse_workspace_retries = coarse_work.workspace_retries + coarse.jfo_band_workspace_retries +
+                             coarse.coarse_workspace_retries;
   // the same answer on every rank (each rank looked up its own points)
   if (Utilities::MPI::min(int(all_found), mpi_communicator) == 0)
     return false;

@@ -943,7 +943,7 @@ bool JFOSolver::polish()
     {
       ++band_rounds;
       TimerOutput::Scope timer_scope(s.timer, "jfo band rounds");
-      solve_on_subset(s.system_matrix, band_dofs, newton_rhs, w);
+      band_workspace_retries += solve_on_subset(s.system_matrix, band_dofs, newton_rhs, w);
     }
     else
     {
@@ -1179,6 +1179,7 @@ void JFOSolver::solve()
   s.jfo_newton_steps = it;
   s.jfo_active_set_rounds = active_set_rounds;
   s.jfo_band_rounds = band_rounds;
+  s.jfo_band_workspace_retries = band_workspace_retries;
   s.jfo_low_rank_updates = low_rank_updates;
   s.cavitation_residual = std::max(mass_residual, complementarity_residual);
   if (!converged)

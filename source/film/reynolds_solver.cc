@@ -754,8 +754,9 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   linear_system_solver.reset_statistics();
   current_coarsening = coarsening;
   coarse_iterations = 0;
-  coarse_factorizations = coarse_krylov_iterations = 0;
+  coarse_factorizations = coarse_krylov_iterations = coarse_workspace_retries = 0;
   jfo_newton_steps = jfo_active_set_rounds = jfo_band_rounds = jfo_low_rank_updates = 0;
+  jfo_band_workspace_retries = 0;
   setup_system(coarsening);
   // The cavitation models (jfo, reynolds) start from their solution of the mesh twice as coarse
   // (mesh sequencing) and assemble and solve the full film only where that start is not

@@ -683,10 +683,10 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
   return std::vector<bool>(marked.begin(), marked.end());
 }
 
-void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
-                     const std::vector<bool> &subset,
-                     const dealii::TrilinosWrappers::MPI::Vector &b,
-                     dealii::TrilinosWrappers::MPI::Vector &x)
+unsigned int solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
+                             const std::vector<bool> &subset,
+                             const dealii::TrilinosWrappers::MPI::Vector &b,
+                             dealii::TrilinosWrappers::MPI::Vector &x)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
   const MPI_Comm comm = matrix.get_mpi_communicator();
@@ -763,6 +763,7 @@ void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
   for (unsigned int r = 0; r < n; ++r)
     if (const int lid = x_map.LID(global[r]); lid >= 0)
       x.trilinos_vector()[0][lid] = sub_x[r];
+  return lu.workspace_retries();
 }
 
 } // namespace sealfe

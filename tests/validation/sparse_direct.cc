@@ -510,6 +510,29 @@ TEST(SparseDirect, MumpsRetriesAFactorisationThatOutgrowsItsWorkspaceEstimate)
   EXPECT_EQ(lu.numeric_only(), 1u);
 }
 
+// The band solve of the JFO polish factorises its principal submatrix with its own SparseDirect,
+// whose workspace retries it returns (summary.json `cavitation.band_workspace_retries`): on the
+// whole of the matrix above (the subset of every dof, in the same order) the retries of a direct
+// factorisation of the same matrix, and none for a KLU-sized subset.
+TEST(SparseDirect, BandSolveReturnsItsWorkspaceRetries)
+{
+  const unsigned int m = 150, N = m * m;
+  SwappedColumns s(m, 5000);
+  SparseDirect lu;
+  lu.factorize(s.A);
+  ASSERT_GE(lu.workspace_retries(), 1u) << "this matrix no longer outgrows the estimate";
+  const IndexSet all = complete_index_set(N);
+  TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = std::sin(0.37 * i) + 0.5;
+  EXPECT_EQ(solve_on_subset(s.A, std::vector<bool>(N, true), b, x), lu.workspace_retries());
+  // the last 400 dofs (columns not exchanged there: a principal submatrix of the diagonally
+  // dominant grid matrix): KLU, no workspace to retry
+  std::vector<bool> small(N, false);
+  std::fill(small.end() - 400, small.end(), true);
+  EXPECT_EQ(solve_on_subset(s.A, small, b, x), 0u);
+}
+
 // When even the largest margin (160 %) falls short, the factorisation says so in one message that
 // names the workspace, instead of MUMPS's bare error code.
 TEST(SparseDirect, MumpsSaysSoWhenTheLargestWorkspaceMarginFallsShort)

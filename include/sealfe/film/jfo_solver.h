@@ -156,6 +156,8 @@ private:
   bool monotone = false;
   unsigned int active_set_rounds = 0; // linear solves of the polish, band rounds included
   unsigned int band_rounds = 0;
+  /// MUMPS workspace retries of the band rounds' factorisations (solve_on_subset)
+  unsigned int band_workspace_retries = 0;
   /// Set by a start from the coarse level: the first polish begins with band rounds about the
   /// start's cavity boundary, before any global factorisation (JFOSolver::polish).
   bool band_first = false;

@@ -153,6 +153,9 @@ public:
   /// Of those, the band rounds: each a sparse direct factorisation of a principal submatrix (the
   /// dofs near the last set changes), not counted in linear_solver_statistics().
   unsigned int band_rounds() const { return jfo_band_rounds; }
+  /// MUMPS factorisations of the band rounds repeated with a larger workspace margin
+  /// (SparseDirect::workspace_retries), which linear_solver_statistics() does not count.
+  unsigned int band_workspace_retries() const { return jfo_band_workspace_retries; }
   /// Of the global rounds, those solved by a low-rank update of an earlier round's factorisation
   /// (no factorisation: JFOSolver::low_rank_solve).
   unsigned int low_rank_updates() const { return jfo_low_rank_updates; }
@@ -163,6 +166,8 @@ public:
   /// Factorisations (or AMG set-ups) and Krylov iterations of all mesh-sequencing levels.
   unsigned int coarse_level_factorizations() const { return coarse_factorizations; }
   unsigned int coarse_level_krylov_iterations() const { return coarse_krylov_iterations; }
+  /// MUMPS workspace retries of all mesh-sequencing levels (their global and band rounds).
+  unsigned int coarse_level_workspace_retries() const { return coarse_workspace_retries; }
   /// Seconds spent per stage of the last run (setup, assemble, solve, loads).
   std::map<std::string, double> stage_times() const;
   /// Parts of the setup stage and of the multigrid set-up and level preparation of the last run
@@ -331,9 +336,10 @@ private:
   dealii::TrilinosWrappers::MPI::Vector jfo_elimination;   // d(eliminated)/d(kept)
   unsigned int cavitation_iterations = 0;
   unsigned int coarse_iterations = 0; // Newton iterations spent on the mesh-sequencing levels
-  unsigned int coarse_factorizations = 0, coarse_krylov_iterations = 0;
+  unsigned int coarse_factorizations = 0, coarse_krylov_iterations = 0,
+               coarse_workspace_retries = 0;
   unsigned int jfo_newton_steps = 0, jfo_active_set_rounds = 0, jfo_band_rounds = 0,
-               jfo_low_rank_updates = 0;
+               jfo_low_rank_updates = 0, jfo_band_workspace_retries = 0;
   /// JFO on a sequenced mesh: whether the band rounds about the coarse start's cavity boundary
   /// left the set far from the global one (JFOSolver::polish), or were not taken (a coarser
   /// level's had failed, or the test hook JFOSolver::band_start is off); the finer level then

@@ -109,10 +109,11 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
 /// x_S = A_SS^-1 b_S on the dofs S with `subset` set (the others of x untouched): a sparse
 /// factorisation of the principal submatrix (KLU or MUMPS by its size). On several ranks
 /// collective (`subset` the same on every rank): every rank gathers A_SS and b_S, solves them
-/// and sets its own entries of x.
-void solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
-                     const std::vector<bool> &subset,
-                     const dealii::TrilinosWrappers::MPI::Vector &b,
-                     dealii::TrilinosWrappers::MPI::Vector &x);
+/// and sets its own entries of x. Returns the factorisation's MUMPS workspace retries
+/// (SparseDirect::workspace_retries; 0 for KLU).
+unsigned int solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
+                             const std::vector<bool> &subset,
+                             const dealii::TrilinosWrappers::MPI::Vector &b,
+                             dealii::TrilinosWrappers::MPI::Vector &x);
 
 } // namespace sealfe
