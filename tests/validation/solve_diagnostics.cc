@@ -146,6 +146,17 @@ TEST(MassBalance, WavyJfoExampleBalances)
   ASSERT_EQ(r.status, 0) << r.err;
   const auto s = nlohmann::json::parse(read_file(d / "out" / "summary.json"));
   EXPECT_LT(s["mass_balance_residual"].get<double>(), 1e-6);
+  // The work counts are stable keys (doc/cavitation.md). A factorisation is retried at most three
+  // times (its margin doubled from 20 % up to 160 %), and each band round factorises with a
+  // solver of its own, so the band rounds retry at most three times per band factorisation.
+  const auto &c = s["cavitation"];
+  for (const char *key :
+       {"band_factorizations", "band_workspace_retries", "coarse_level_factorizations",
+        "coarse_level_workspace_retries", "low_rank_updates"})
+    EXPECT_TRUE(c.contains(key) && c[key].is_number_unsigned()) << key;
+  EXPECT_LE(c["band_workspace_retries"].get<unsigned>(),
+            3 * c["band_factorizations"].get<unsigned>());
+  EXPECT_TRUE(s["linear_solver"]["workspace_retries"].is_number_unsigned());
 }
 
 TEST(ErrorEstimate, FailureOfTheCoarseSolveKeepsTheConvergedResult)
