@@ -11,6 +11,7 @@
 
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 namespace sealfe::applications
 {
@@ -56,6 +57,27 @@ void print_headline(const CoefficientResult &r)
   print("damping D = -dF/dq_dot", r.coefficients.damping, "N s/m, N s/rad; N m s/m, N m s/rad");
   std::cout << "  angular k, c, d    " << r.coefficients.tilt_direct_stiffness() << ", "
             << r.coefficients.tilt_cross_stiffness() << ", " << r.coefficients.tilt_direct_damping()
+            << "\n";
+  // What the coefficient set cost the linear solver (issue 13: Krylov iterations bounded).
+  const bool krylov = r.linear_method != "direct";
+  auto work = [&](const FilmLinearSolver::Statistics &w)
+  {
+    std::ostringstream s;
+    s << w.solves << (w.solves == 1 ? " solve" : " solves");
+    if (w.factorizations > 0)
+      s << ", " << w.factorizations << (krylov ? " preconditioner set-up" : " factorisation")
+        << (w.factorizations == 1 ? "" : "s");
+    if (w.krylov_iterations > 0)
+      s << ", " << w.max_krylov_iterations << " Krylov iterations at most";
+    return s.str();
+  };
+  std::cout << "  linear solver      " << r.linear_method
+            << (r.direct_package.empty() ? "" : " (" + r.direct_package + ")")
+            << ": operating point " << work(r.operating_point_linear) << "; coefficient set "
+            << work(r.coefficient_linear)
+            << (r.coefficient_linear.factorizations == 0
+                    ? (krylov ? " (with its preconditioner)" : " (with its factorisation)")
+                    : "")
             << "\n"
             << "  time: solve " << r.solve_time << " s, coefficients " << r.coefficient_time
             << " s, error estimate " << r.error_estimate_time << " s\n";

@@ -76,8 +76,13 @@ PY
 bands() {
   python3 - "$@" <<'PY'
 import json, sys
-counts = [json.load(open(f))["cavitation"]["band_factorizations"] for f in sys.argv[1:]]
+cavitation = [json.load(open(f))["cavitation"] for f in sys.argv[1:]]
+counts = [c["band_factorizations"] for c in cavitation]
 print(f"JFO band factorisations on 1, 2, ... ranks = {counts}")
+# their MUMPS workspace retries (cavitation.md: each band's factorisation retries at most 3 times)
+retries = [c["band_workspace_retries"] for c in cavitation]
+print(f"JFO band workspace retries on 1, 2, ... ranks = {retries}")
+assert all(r <= 3 * n for r, n in zip(retries, counts)), "more than 3 retries per band"
 sys.exit(0 if min(counts) > 0 else 1)
 PY
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Scaling benchmark of the sealfe FE Reynolds solver (issue 13, "Scale and speed").
 
-    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,gmg,ranks,jfo,jforanks] [--sealfe build/sealfe]
+    /usr/bin/python3 benchmarks/scaling/run.py [--quick] [--parts amg,gmg,coefficients,ranks,jfo,jforanks] [--sealfe build/sealfe]
 
 Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps = 0.5), with
 `Error estimate = false`, `Write fields = false`. Runs
@@ -10,6 +10,10 @@ Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps 
      iterations, process and stage times;
   1b. gmg: the same ladder with `Linear solver = cg-gmg` (geometric multigrid on the levels of
      the built-in annulus, source/film/film_multigrid.cc), degree 2 to 4.3e6 dofs;
+  1c. coefficients: the gmg ladder with `sealfe coefficients` (stiffness and damping by the
+     perturbation method: six linearised solves with the operating point's V-cycle), recording
+     the CG iterations of the operating point and the most of any of the six linearised solves,
+     and the coefficient set's time against the solve's (coefficient_cost_ratio);
   2. ranks: the full-film size ladder, degree 2, Ntheta/Nr = 16 (the 1.05e6-dof mesh 128 x 2048
      of issue 13 is on it), 4e3 .. 4.2e6 dofs, on 1 and 2 MPI ranks (`mpirun -np 2`) with the
      default `Linear solver = auto` (direct below 1.5e5 dofs, else CG + geometric multigrid), with
@@ -19,11 +23,12 @@ Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps 
      and prm/wavy_jfo.prm, recording the time ratio, Newton iterations and factorisations;
   4. jforanks: JFO on the tilted seal, 1.3e5, 5.3e5 and 1.05e6 dofs, on 1 and 2 MPI ranks.
 Writes benchmarks/scaling/scaling.csv and scaling.png (process time against dofs; CG iterations
-against dofs per degree and aspect; CG iterations against the aspect). Each run once (the
-machine is shared: treat times as upper bounds; iteration counts are exact). --quick: up to
-7e4 dofs (about a minute); the full run takes about 20 minutes on the 2-core machine.
+against dofs per degree and aspect; CG iterations against the aspect; the same for the
+coefficient set's linearised solves). Each run once (the machine is shared: treat times as upper
+bounds; iteration counts are exact). --quick: up to 7e4 dofs (about a minute); the full run takes
+about 30 minutes on the 2-core machine.
 """
-import argparse, csv, json, math, os, shutil, subprocess, tempfile, time
+import argparse, csv, json, math, os, re, shutil, subprocess, tempfile, time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -34,10 +39,15 @@ MPIRUN = ["mpirun", "--oversubscribe", "-np", "2"]
 MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
-def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, ranks=1, env=None):
-    """One `sealfe solve` of `base` on an nr x nt mesh of degree k (no error estimate, no
-    fields), timed from outside; `env` replaces the environment (default MPI_ENV)."""
+def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, ranks=1, env=None,
+        command="solve"):
+    """One `sealfe solve` (or `command`, e.g. coefficients) of `base` on an nr x nt mesh of
+    degree k (no error estimate, no fields), timed from outside; `env` replaces the environment
+    (default MPI_ENV)."""
     out = tempfile.mkdtemp(dir=work)
+    if command == "coefficients":
+        # `sealfe coefficients` has no film-model choice (it is the FE solve) and writes no fields
+        base = re.sub(r"subsection (Film model|Output)\n.*?\nend\n", "", base, flags=re.S)
     prm = base + f"""
 set Output directory = {out}
 subsection Discretization
@@ -51,14 +61,14 @@ end
 subsection Cavitation
   set Model = {cavitation}
 end
-subsection Output
+""" + ("" if command == "coefficients" else """subsection Output
   set Write fields = false
 end
-"""
+""")
     path = out + ".prm"
     open(path, "w").write(prm)
     t = time.perf_counter()
-    cmd = (MPIRUN if ranks > 1 else []) + [sealfe, "solve", path]
+    cmd = (MPIRUN if ranks > 1 else []) + [sealfe, command, path]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=env or MPI_ENV)
     wall = time.perf_counter() - t
     if r.returncode:
@@ -67,6 +77,8 @@ end
     shutil.rmtree(out, ignore_errors=True)
     st = s.get("stage_wall_time", {})
     ls = s.get("linear_solver", {})
+    cav = s.get("cavitation", {})
+    coefficient_solves = s.get("coefficient_linear_solver", {})
     return {"dofs": s["dofs"], "ranks": ranks, "process_wall": round(wall, 3),
             "inprocess": s.get("wall_time"), "setup": st.get("setup", 0),
             "assemble": st.get("assemble", 0), "loads": st.get("loads", 0),
@@ -74,11 +86,20 @@ end
             "linear_setup": st.get("linear solver setup", 0),
             "cg_iterations": ls.get("krylov_iterations"), "method": ls.get("method"),
             "factorizations": ls.get("factorizations"),
-            "newton": s.get("cavitation", {}).get("nonlinear_iterations"),
-            "newton_steps": s.get("cavitation", {}).get("newton_steps"),
-            "active_set_rounds": s.get("cavitation", {}).get("active_set_rounds"),
-            "coarse_factorizations": s.get("cavitation", {}).get("coarse_level_factorizations"),
-            "band_factorizations": s.get("cavitation", {}).get("band_factorizations"),
+            "workspace_retries": ls.get("workspace_retries"),
+            "newton": cav.get("nonlinear_iterations"),
+            "newton_steps": cav.get("newton_steps"),
+            "active_set_rounds": cav.get("active_set_rounds"),
+            "coarse_factorizations": cav.get("coarse_level_factorizations"),
+            "band_factorizations": cav.get("band_factorizations"),
+            "low_rank_updates": cav.get("low_rank_updates"),
+            "band_workspace_retries": cav.get("band_workspace_retries"),
+            "coarse_workspace_retries": cav.get("coarse_level_workspace_retries"),
+            "coefficients_time": st.get("coefficients"),
+            "coefficient_cost_ratio": s.get("coefficient_cost_ratio"),
+            "coefficient_solves": coefficient_solves.get("solves"),
+            "coefficient_cg_max": coefficient_solves.get("max_krylov_iterations"),
+            "coefficient_cg_total": coefficient_solves.get("krylov_iterations"),
             "force_z": s["force_z"], "moment_x": s["moment_x"],
             "blas_kernels": s.get("blas_kernels", {}).get("kernels")}
 
@@ -117,7 +138,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sealfe", default=os.path.join(REPO, "build", "sealfe"))
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--parts", default="amg,gmg,ranks,jfo,jforanks")
+    ap.add_argument("--parts", default="amg,gmg,coefficients,ranks,jfo,jforanks")
     ap.add_argument("--plot-only", action="store_true", help="redraw scaling.png from scaling.csv")
     a = ap.parse_args()
     parts = [] if a.plot_only else a.parts.split(",")
@@ -126,7 +147,7 @@ def main():
     path = os.path.join(HERE, "scaling.csv")
     if a.plot_only:
         rows = read_rows(path)
-    for study in [p for p in ("amg", "gmg") if p in parts]:
+    for study in [p for p in ("amg", "gmg", "coefficients") if p in parts]:
         for k in (1, 2, 3):
             max_dofs = 70000 if a.quick else (4_300_000 if k == 2 else 1_200_000)
             for aspect in (1, 2, 16, 32):
@@ -137,7 +158,10 @@ def main():
                     if dofs > max_dofs:
                         break
                     if dofs >= 10000:
-                        r = run(a.sealfe, work, k, nr, nt, "cg-" + study)
+                        if study == "coefficients":
+                            r = run(a.sealfe, work, k, nr, nt, "cg-gmg", command="coefficients")
+                        else:
+                            r = run(a.sealfe, work, k, nr, nt, "cg-" + study)
                         r.update(study=study, degree=k, aspect=aspect, nr=nr, nt=nt)
                         print(r, flush=True)
                         rows.append(r)
@@ -210,8 +234,13 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(2, 3, figsize=(15, 9.6))
-        for ax, study in zip(axes, ("amg", "gmg")):
+        studies = [st for st in ("amg", "gmg", "coefficients") if any(r["study"] == st for r in rows)]
+        fig, axes = plt.subplots(len(studies), 3, figsize=(15, 4.8 * len(studies)), squeeze=False)
+        for ax, study in zip(axes, studies):
+            # the CG iterations plotted: the full film's, or the most of the coefficient set's six
+            # linearised solves
+            its = "coefficient_cg_max" if study == "coefficients" else "cg_iterations"
+            solver_name = "GMG" if study == "coefficients" else study.upper()
             colours = {1: "tab:blue", 2: "tab:orange", 16: "tab:green", 32: "tab:red"}
             markers = {1: "s", 2: "o", 3: "^"}
             for k in (1, 2, 3):
@@ -224,10 +253,15 @@ def main():
                             continue
                         lab = f"k={k}, Nθ/Nr={aspect}" + (", 2 ranks" if ranks == 2 else "")
                         style = "--" if ranks == 2 else "-"
-                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
-                                     markers[k] + style, color=colours[aspect], label=lab, ms=4)
+                        if study == "coefficients":
+                            ax[0].semilogx([r["dofs"] for r in sel],
+                                           [r["coefficient_cost_ratio"] for r in sel],
+                                           markers[k] + style, color=colours[aspect], label=lab, ms=4)
+                        else:
+                            ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                         markers[k] + style, color=colours[aspect], label=lab, ms=4)
                         if ranks == 1:
-                            ax[1].semilogx([r["dofs"] for r in sel], [r["cg_iterations"] for r in sel],
+                            ax[1].semilogx([r["dofs"] for r in sel], [r[its] for r in sel],
                                            markers[k] + "-", color=colours[aspect], label=lab, ms=4)
             if study == "gmg":
                 # the rank ladders on 1 and 2 ranks: full film (k = 2, aspect 16, `auto`: direct
@@ -245,7 +279,7 @@ def main():
             # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
             ref = [r for r in rows if r["study"] == study and r.get("nr") == 128 and r.get("aspect") == 16
                    and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
-            if ref:
+            if ref and study != "coefficients":
                 x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
                 xs = [1e4, 5e6]
                 ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
@@ -260,21 +294,31 @@ def main():
                         if sel:
                             best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
                             if abs(math.log(best["dofs"] / target)) < math.log(2.5):
-                                pts.append((aspect, best["cg_iterations"]))
+                                pts.append((aspect, best[its]))
                     if pts:
                         ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
                                        label=f"k={k}, ~{target:.0e} dofs", base=2)
-            ax[0].set_xlabel("dofs"); ax[0].set_ylabel("whole-process wall time [s]")
-            ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)"
-                            + ("; rank ladders of full film and JFO" if study == "gmg" else ""), fontsize=9)
+            what = ("coefficient set: most CG iterations of its 6 linearised solves"
+                    if study == "coefficients" else "CG iterations")
+            ax[0].set_xlabel("dofs")
+            if study == "coefficients":
+                ax[0].set_ylabel("coefficient set time / operating-point solve time")
+                ax[0].set_title("coefficient set (6 linearised solves, CG + GMG) against its solve",
+                                fontsize=9)
+                ax[0].set_ylim(bottom=0)
+            else:
+                ax[0].set_ylabel("whole-process wall time [s]")
+                ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)"
+                                + ("; rank ladders of full film and JFO" if study == "gmg" else ""),
+                                fontsize=9)
             ax[0].legend(fontsize=6, ncol=2)
-            ax[1].set_xlabel("dofs"); ax[1].set_ylabel("CG iterations (relative residual 1e-12)")
-            ax[1].set_title(f"CG + {study.upper()}: iterations against size", fontsize=9)
+            ax[1].set_xlabel("dofs"); ax[1].set_ylabel(what + " (relative residual 1e-12)", fontsize=8)
+            ax[1].set_title(f"CG + {solver_name}: {what} against size", fontsize=9)
             ax[1].axhline(25, color="k", ls=":", lw=1)
             ax[1].legend(fontsize=6, ncol=2)
             ax[2].set_xlabel("cell aspect Nθ/Nr (cells around / cells across)")
-            ax[2].set_ylabel("CG iterations (relative residual 1e-12)")
-            ax[2].set_title(f"CG + {study.upper()}: iterations against aspect", fontsize=9)
+            ax[2].set_ylabel(what + " (relative residual 1e-12)", fontsize=8)
+            ax[2].set_title(f"CG + {solver_name}: {what} against aspect", fontsize=9)
             ax[2].axhline(25, color="k", ls=":", lw=1)
             ax[2].legend(fontsize=7)
             for x in ax[1:]:

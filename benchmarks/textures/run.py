@@ -137,6 +137,10 @@ end
             "band_factorizations": c.get("band_factorizations"),
             "coarse_iterations": c.get("coarse_level_iterations"),
             "coarse_factorizations": c.get("coarse_level_factorizations"),
+            "low_rank_updates": c.get("low_rank_updates"),
+            "workspace_retries": ls.get("workspace_retries"),
+            "band_workspace_retries": c.get("band_workspace_retries"),
+            "coarse_workspace_retries": c.get("coarse_level_workspace_retries"),
             "force_z": s["force_z"], "cavitated_fraction": s.get("cavitated_fraction"),
             "mass_imbalance": s.get("mass_balance_residual"), "moment_x": s.get("moment_x"),
             "nonlinear_residual": c.get("final_residual")}
@@ -194,7 +198,9 @@ def main():
                  "ratio_inprocess": round(jfo["inprocess"] / full["inprocess"], 3),
                  "ratio_process": round(jfo["process_wall"] / full["process_wall"], 3)}
             for key in ("newton_steps", "active_set_rounds", "factorizations", "band_factorizations",
-                        "coarse_iterations", "coarse_factorizations", "force_z",
+                        "coarse_iterations", "coarse_factorizations", "low_rank_updates",
+                        "workspace_retries", "band_workspace_retries",
+                        "coarse_workspace_retries", "force_z",
                         "cavitated_fraction", "mass_imbalance"):
                 r[key] = jfo[key]
             r["full_film_force_z"] = full["force_z"]

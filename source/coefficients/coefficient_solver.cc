@@ -283,6 +283,9 @@ nlohmann::json CoefficientResult::to_json() const
                           {"error_estimate", error_estimate_time}};
   // The cost of the coefficient set relative to the solve it linearises (target <= 1.5).
   j["coefficient_cost_ratio"] = solve_time > 0 ? coefficient_time / solve_time : 0.0;
+  j["linear_solver"] = linear_solver_summary(operating_point_linear, linear_method, direct_package);
+  j["coefficient_linear_solver"] =
+      linear_solver_summary(coefficient_linear, linear_method, direct_package);
   return j;
 }
 
@@ -308,8 +311,7 @@ void CoefficientSolver::parse_parameters(ParameterHandler &prm)
 
 std::pair<FilmLoads, FilmCoefficients>
 CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingConditions &conditions,
-                                   const unsigned int coarsening, double &solve_time,
-                                   double &coefficient_time)
+                                   const unsigned int coarsening, MeshCost &cost)
 {
   FilmCoefficients c;
   c.level = 2;
@@ -322,7 +324,9 @@ CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingCon
   {
     auto start = std::chrono::steady_clock::now();
     base = solver.run(film, conditions, coarsening);
-    solve_time = seconds_since(start);
+    cost.solve_time = seconds_since(start);
+    cost.solve_linear = solver.linear_solver_statistics().statistics();
+    solver.reset_linear_solver_statistics(); // from here: the coefficient set's solves
     start = std::chrono::steady_clock::now();
     // Columns of K: dh = dh/dq_j; columns of D: d(dh/dt) = dh/dq_j.
     std::vector<ReynoldsSolver::FilmPerturbation> directions(6);
@@ -342,7 +346,8 @@ CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingCon
         c.damping[i][j] = -dF_rate[i];
       }
     }
-    coefficient_time = seconds_since(start);
+    cost.coefficient_time = seconds_since(start);
+    cost.coefficient_linear = solver.linear_solver_statistics().statistics();
   }
   else
   {
@@ -352,23 +357,27 @@ CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingCon
     const std::array<double, 6> step = {
         {s.axial, s.tilt, s.tilt, s.axial_rate, s.tilt_rate, s.tilt_rate}};
     auto start = std::chrono::steady_clock::now();
+    cost.coefficient_linear = FilmLinearSolver::Statistics();
     for (unsigned int j = 0; j < 6; ++j)
     {
       const auto plus =
           generalized_force(solver.run(perturbed(film, j, step[j]), conditions, coarsening));
+      cost.coefficient_linear += solver.linear_solver_statistics().statistics();
       const auto minus =
           generalized_force(solver.run(perturbed(film, j, -step[j]), conditions, coarsening));
+      cost.coefficient_linear += solver.linear_solver_statistics().statistics();
       for (unsigned int i = 0; i < 3; ++i)
       {
         const double derivative = (plus[i] - minus[i]) / (2 * step[j]);
         (j < 3 ? c.stiffness[i][j] : c.damping[i][j - 3]) = -derivative;
       }
     }
-    coefficient_time = seconds_since(start);
+    cost.coefficient_time = seconds_since(start);
     // The operating point last, so that the solver is left holding its solution.
     start = std::chrono::steady_clock::now();
     base = solver.run(film, conditions, coarsening);
-    solve_time = seconds_since(start);
+    cost.solve_time = seconds_since(start);
+    cost.solve_linear = solver.linear_solver_statistics().statistics();
   }
   return {base, c};
 }
@@ -377,8 +386,8 @@ FilmCoefficients CoefficientSolver::coefficients(const FilmThickness &film,
                                                  const OperatingConditions &conditions,
                                                  const unsigned int coarsening)
 {
-  double t_solve, t_coefficients;
-  return compute_on_mesh(film, conditions, coarsening, t_solve, t_coefficients).second;
+  MeshCost cost;
+  return compute_on_mesh(film, conditions, coarsening, cost).second;
 }
 
 CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
@@ -400,7 +409,7 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
   if (r.has_error_estimate)
   {
     const auto start = std::chrono::steady_clock::now();
-    double t_solve, t_coefficients;
+    MeshCost coarse_cost;
     // The estimate's failure does not cost the fine result: it is reported unavailable (or, for
     // the 4x coarser mesh, two-mesh).
     why_two_mesh = third_mesh_unavailable(solver);
@@ -408,7 +417,7 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
     {
       try
       {
-        coarsest = compute_on_mesh(film, conditions, 2, t_solve, t_coefficients);
+        coarsest = compute_on_mesh(film, conditions, 2, coarse_cost);
         r.coarsest_dofs = solver.n_dofs();
       }
       catch (std::exception &e)
@@ -418,8 +427,7 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
     }
     try
     {
-      std::tie(coarse_loads, coarse) =
-          compute_on_mesh(film, conditions, 1, t_solve, t_coefficients);
+      std::tie(coarse_loads, coarse) = compute_on_mesh(film, conditions, 1, coarse_cost);
       r.coarse_dofs = solver.n_dofs();
     }
     catch (std::exception &e)
@@ -431,8 +439,14 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
     r.error_estimate_time = seconds_since(start);
   }
 
-  std::tie(r.loads, r.coefficients) =
-      compute_on_mesh(film, conditions, 0, r.solve_time, r.coefficient_time);
+  MeshCost fine_cost;
+  std::tie(r.loads, r.coefficients) = compute_on_mesh(film, conditions, 0, fine_cost);
+  r.solve_time = fine_cost.solve_time;
+  r.coefficient_time = fine_cost.coefficient_time;
+  r.operating_point_linear = fine_cost.solve_linear;
+  r.coefficient_linear = fine_cost.coefficient_linear;
+  r.linear_method = solver.linear_solver_statistics().method_name();
+  r.direct_package = solver.linear_solver_statistics().direct_package();
   r.dofs = solver.n_dofs();
   r.degree = solver.degree();
 

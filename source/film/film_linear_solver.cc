@@ -23,6 +23,18 @@ using VectorType = TrilinosWrappers::MPI::Vector;
 
 } // namespace
 
+FilmLinearSolver::Statistics &FilmLinearSolver::Statistics::operator+=(const Statistics &other)
+{
+  factorizations += other.factorizations;
+  symbolic_reuses += other.symbolic_reuses;
+  solves += other.solves;
+  krylov_iterations += other.krylov_iterations;
+  max_krylov_iterations = std::max(max_krylov_iterations, other.max_krylov_iterations);
+  reused_preconditioners += other.reused_preconditioners;
+  workspace_retries += other.workspace_retries;
+  return *this;
+}
+
 const char *FilmLinearSolver::method_name() const
 {
   switch (current_method)

@@ -252,6 +252,20 @@ std::string load_with_uncertainty(const nlohmann::json &summary, const std::stri
   return s.str();
 }
 
+nlohmann::json linear_solver_summary(const FilmLinearSolver::Statistics &statistics,
+                                     const std::string &method, const std::string &direct_package)
+{
+  return {{"method", method},
+          {"direct_package", direct_package},
+          {"factorizations", statistics.factorizations},
+          {"solves", statistics.solves},
+          {"krylov_iterations", statistics.krylov_iterations},
+          {"max_krylov_iterations", statistics.max_krylov_iterations},
+          {"symbolic_reuses", statistics.symbolic_reuses},
+          {"reused_preconditioners", statistics.reused_preconditioners},
+          {"workspace_retries", statistics.workspace_retries}};
+}
+
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
                                             const ReynoldsSolver &solver, const FilmLoads &loads,
                                             MPI_Comm comm)
@@ -262,16 +276,8 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   summary["polynomial_degree"] = solver.degree();
   summary["linear_iterations"] = solver.linear_iterations();
   const FilmLinearSolver &linear = solver.linear_solver_statistics();
-  summary["linear_solver"] = {
-      {"method", linear.method_name()},
-      {"direct_package", linear.direct_package()},
-      {"factorizations", linear.statistics().factorizations},
-      {"solves", linear.statistics().solves},
-      {"krylov_iterations", linear.statistics().krylov_iterations},
-      {"max_krylov_iterations", linear.statistics().max_krylov_iterations},
-      {"symbolic_reuses", linear.statistics().symbolic_reuses},
-      {"reused_preconditioners", linear.statistics().reused_preconditioners},
-      {"workspace_retries", linear.statistics().workspace_retries}};
+  summary["linear_solver"] =
+      linear_solver_summary(linear.statistics(), linear.method_name(), linear.direct_package());
   summary["leakage_imbalance"] = loads.leakage_inner + loads.leakage_outer;
   // Discrete mass balance: what leaves through the two circles plus the squeeze flow, relative
   // to a flow scale that vanishes only with every driving term (zero to solver tolerance for none

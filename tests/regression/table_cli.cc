@@ -86,6 +86,14 @@ TEST(CoefficientsCli, SummaryHasStiffnessDampingAndTheirErrors)
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_EQ(s["film_model_level"], 2);
   EXPECT_EQ(s["coefficient_method"], "perturbation");
+  // The linear solver's work: one solve of the operating point (2176 unknowns: factorised), and
+  // six linearised solves with its factorisation (none of their own).
+  EXPECT_EQ(s["linear_solver"]["method"], "direct");
+  EXPECT_EQ(s["linear_solver"]["solves"], 1);
+  EXPECT_EQ(s["linear_solver"]["factorizations"], 1);
+  EXPECT_EQ(s["coefficient_linear_solver"]["method"], "direct");
+  EXPECT_EQ(s["coefficient_linear_solver"]["solves"], 6);
+  EXPECT_EQ(s["coefficient_linear_solver"]["factorizations"], 0);
 
   // The finite-difference check from the command line gives the same matrices.
   const fs::path d2 = work_dir("coefficients_fd");
@@ -94,6 +102,10 @@ TEST(CoefficientsCli, SummaryHasStiffnessDampingAndTheirErrors)
                                       "end\n");
   ASSERT_EQ(r2.status, 0) << r2.err;
   const auto s2 = nlohmann::json::parse(read_file(d2 / "out" / "summary.json"));
+  // central differences: 12 perturbed full-film solves, one factorisation and solve each
+  EXPECT_EQ(s2["coefficient_linear_solver"]["solves"], 12);
+  EXPECT_EQ(s2["coefficient_linear_solver"]["factorizations"], 12);
+  EXPECT_EQ(s2["linear_solver"]["solves"], 1);
   for (const char *key : {"stiffness", "damping"})
     for (unsigned int i = 0; i < 3; ++i)
       EXPECT_NEAR(s2[key][i][i].get<double>(), s[key][i][i].get<double>(),

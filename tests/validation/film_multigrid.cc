@@ -5,7 +5,11 @@
 //  - the CG iterations stay at most 25 (the goal of issue 13) over the mesh aspect
 //    Ntheta/Nr = 1 .. 32, three levels of refinement and degrees 1 .. 3: a multigrid whose
 //    convergence does not depend on the cell aspect (up to ~45:1 here) or on the mesh size;
+//  - the linearised solves of the coefficient set (stiffness and damping, perturbation method)
+//    reuse its V-cycle: their K and D are the direct solve's to the CG tolerance, in at most 25
+//    iterations each over the same aspects, sizes and degrees;
 //  - `auto` picks it above the direct-solver limit on the built-in mesh only.
+#include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/film/reynolds_solver.h>
 
 #include <gtest/gtest.h>
@@ -88,6 +92,72 @@ TEST(FilmMultigrid, IterationsBoundedOverAspectSizeAndDegree)
       EXPECT_LE(s.linear_iterations(), bound)
           << "Ntheta/Nr = " << aspect << ", " << s.n_dofs() << " dofs, degree " << degree;
     }
+  }
+}
+
+TEST(FilmMultigrid, CoefficientSetMatchesTheDirectSolveToTheSolverTolerance)
+{
+  // Each entry of K and D is a load functional of a linearised pressure, solved by CG with the
+  // operating point's V-cycle: the argument of LoadsMatchTheDirectSolveToTheSolverTolerance
+  // bounds its error by tau |z| |b| for the direction's right-hand side b. Entries of different
+  // units are measured against sqrt(|X_ii X_jj|) (the scale of the coefficients' error estimate),
+  // and the cross entries of the tilted seal are of that size: 100 tau of it.
+  for (const double tau : {1e-8, 1e-12})
+    for (const unsigned int degree : {1u, 2u, 3u})
+    {
+      CoefficientSolver direct(tilted_seal(degree, 16, 64, 0, FilmSettings::LinearSolver::direct),
+                               CoefficientSettings(), MPI_COMM_WORLD);
+      FilmSettings settings = tilted_seal(degree, 16, 64, 0, FilmSettings::LinearSolver::cg_gmg);
+      settings.solver_tolerance = tau;
+      CoefficientSolver gmg(settings, CoefficientSettings(), MPI_COMM_WORLD);
+      const CoefficientResult a = direct.compute(), b = gmg.compute();
+      ASSERT_EQ(b.linear_method, "cg-gmg");
+      ASSERT_EQ(a.linear_method, "direct");
+      // the six linearised solves reuse the operating point's V-cycle and factorisation
+      EXPECT_EQ(b.coefficient_linear.solves, 6u);
+      EXPECT_EQ(b.coefficient_linear.factorizations, 0u);
+      EXPECT_EQ(a.coefficient_linear.factorizations, 0u);
+      for (const auto m : {&FilmCoefficients::stiffness, &FilmCoefficients::damping})
+      {
+        const auto &x = a.coefficients.*m, &y = b.coefficients.*m;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            EXPECT_LE(std::abs(y[i][j] - x[i][j]),
+                      100 * tau * std::sqrt(std::abs(x[i][i] * x[j][j])))
+                << (m == &FilmCoefficients::stiffness ? "K" : "D") << "(" << i << ", " << j
+                << "), degree " << degree << ", tau " << tau;
+      }
+    }
+}
+
+TEST(FilmMultigrid, CoefficientSolvesIterationsBoundedOverAspectSizeAndDegree)
+{
+  // The goal of issue 13 holds for the linearised coefficient solves too: at most ~25 CG
+  // iterations each, on the meshes of IterationsBoundedOverAspectSizeAndDegree. Their
+  // right-hand sides are the derivatives of the Couette and squeeze terms along the three
+  // mode shapes (axial, two tilts), not the full film's.
+  const unsigned int bound = 25;
+  auto check = [&](const unsigned int degree, const unsigned int nr, const unsigned int nt,
+                   const unsigned int refinements)
+  {
+    CoefficientSolver s(
+        tilted_seal(degree, nr, nt, refinements, FilmSettings::LinearSolver::cg_gmg),
+        CoefficientSettings(), MPI_COMM_WORLD);
+    const CoefficientResult r = s.compute();
+    ASSERT_EQ(r.linear_method, "cg-gmg");
+    EXPECT_EQ(r.coefficient_linear.solves, 6u);
+    EXPECT_GT(r.coefficient_linear.krylov_iterations, 0u);
+    EXPECT_LE(r.coefficient_linear.max_krylov_iterations, bound)
+        << "Ntheta/Nr = " << nt / nr << ", " << r.dofs << " dofs, degree " << degree;
+    EXPECT_LE(r.operating_point_linear.max_krylov_iterations, bound);
+  };
+  for (const unsigned int aspect : {1u, 4u, 32u})
+  {
+    const unsigned int nr = aspect == 1 ? 32 : aspect == 4 ? 16 : 4, nt = aspect * nr;
+    for (unsigned int refinements = 0; refinements < 3; ++refinements)
+      check(2, nr, nt, refinements);
+    for (const unsigned int degree : {1u, 3u})
+      check(degree, nr, nt, 1);
   }
 }
 

@@ -91,6 +91,14 @@ struct CoefficientResult
   double coefficient_time = 0;    // s, the 6 linearised solves (or 12 perturbed solves)
   double error_estimate_time = 0; // s, everything on the coarse mesh
 
+  /// The linear solver on the fine mesh: its method and direct package, and its work for the
+  /// operating-point solve (summary.json `linear_solver`, as `sealfe solve` reports it) and for
+  /// the coefficient set (`coefficient_linear_solver`: the 6 linearised solves with the
+  /// operating point's factorisation or preconditioner, or the linear solves of the 12
+  /// perturbed solves of the finite-difference method).
+  std::string linear_method, direct_package;
+  FilmLinearSolver::Statistics operating_point_linear, coefficient_linear;
+
   /// summary.json content: loads (force_z, ...), FilmCoefficients::to_json() ("stiffness",
   /// "damping", row-major SI), "error_estimate" {"stiffness", "damping", loads...}, timings.
   nlohmann::json to_json() const;
@@ -141,10 +149,18 @@ public:
   CoefficientSettings settings;
 
 private:
+  /// What one mesh's computation cost: times (s) and linear-solver work of the operating-point
+  /// solve and of the coefficient set.
+  struct MeshCost
+  {
+    double solve_time = 0, coefficient_time = 0;
+    FilmLinearSolver::Statistics solve_linear, coefficient_linear;
+  };
   /// The loads of the operating point and K, D on the mesh `coarsening` levels coarser.
-  std::pair<FilmLoads, FilmCoefficients>
-  compute_on_mesh(const FilmThickness &film, const OperatingConditions &conditions,
-                  const unsigned int coarsening, double &solve_time, double &coefficient_time);
+  std::pair<FilmLoads, FilmCoefficients> compute_on_mesh(const FilmThickness &film,
+                                                         const OperatingConditions &conditions,
+                                                         const unsigned int coarsening,
+                                                         MeshCost &cost);
 
   MPI_Comm comm;
   ReynoldsSolver solver;

@@ -55,6 +55,9 @@ public:
     unsigned int max_krylov_iterations = 0;
     unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
     unsigned int workspace_retries = 0; // MUMPS factorisations repeated with a larger workspace
+
+    /// The work of several runs together: counts add, the largest Krylov count is the larger.
+    Statistics &operator+=(const Statistics &other);
   };
 
   /// Below this many unknowns `auto` factorises symmetric systems on one rank (and on several

@@ -56,6 +56,11 @@ std::string pressure_undershoot_warning(const FilmLoads &loads, double cavitatio
 std::string load_with_uncertainty(const nlohmann::json &summary, const std::string &name,
                                   const std::string &unit);
 
+/// summary.json's block of a linear solver's work (`linear_solver`, and the coefficient set's
+/// `coefficient_linear_solver`): the method and direct package with the counts of `statistics`.
+nlohmann::json linear_solver_summary(const FilmLinearSolver::Statistics &statistics,
+                                     const std::string &method, const std::string &direct_package);
+
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
                                             const ReynoldsSolver &solver, const FilmLoads &loads,
                                             MPI_Comm comm);
