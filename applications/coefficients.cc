@@ -60,13 +60,17 @@ void print_headline(const CoefficientResult &r)
             << "\n";
   // What the coefficient set cost the linear solver (issue 13: Krylov iterations bounded).
   const bool krylov = r.linear_method != "direct";
+  // FilmLinearSolver::Statistics::factorizations: KLU/MUMPS factorisations, or multigrid/AMG
+  // set-ups (gmres-amg: either, its fallback is KLU)
+  const char *set_up = !krylov                          ? " factorisation"
+                       : r.linear_method == "gmres-amg" ? " AMG set-up or factorisation"
+                                                        : " preconditioner set-up";
   auto work = [&](const FilmLinearSolver::Statistics &w)
   {
     std::ostringstream s;
     s << w.solves << (w.solves == 1 ? " solve" : " solves");
     if (w.factorizations > 0)
-      s << ", " << w.factorizations << (krylov ? " preconditioner set-up" : " factorisation")
-        << (w.factorizations == 1 ? "" : "s");
+      s << ", " << w.factorizations << set_up << (w.factorizations == 1 ? "" : "s");
     if (w.krylov_iterations > 0)
       s << ", " << w.max_krylov_iterations << " Krylov iterations at most";
     return s.str();

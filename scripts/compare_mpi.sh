@@ -79,7 +79,8 @@ import json, sys
 cavitation = [json.load(open(f))["cavitation"] for f in sys.argv[1:]]
 counts = [c["band_factorizations"] for c in cavitation]
 print(f"JFO band factorisations on 1, 2, ... ranks = {counts}")
-# their MUMPS workspace retries (cavitation.md: each band's factorisation retries at most 3 times)
+# their MUMPS workspace retries: each band round has its own SparseDirect, which throws after
+# max_workspace_retries = 3 (sparse_direct.cc), so more than 3 per band means a miscount
 retries = [c["band_workspace_retries"] for c in cavitation]
 print(f"JFO band workspace retries on 1, 2, ... ranks = {retries}")
 assert all(r <= 3 * n for r, n in zip(retries, counts)), "more than 3 retries per band"

@@ -47,7 +47,8 @@ def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, 
     out = tempfile.mkdtemp(dir=work)
     if command == "coefficients":
         # `sealfe coefficients` has no film-model choice (it is the FE solve) and writes no fields
-        base = re.sub(r"subsection (Film model|Output)\n.*?\nend\n", "", base, flags=re.S)
+        base, n = re.subn(r"subsection (Film model|Output)\n.*?\nend\n", "", base, flags=re.S)
+        assert n == 2, "case.prm: the Film model and Output subsections were not found"
     prm = base + f"""
 set Output directory = {out}
 subsection Discretization
@@ -79,11 +80,16 @@ end
     ls = s.get("linear_solver", {})
     cav = s.get("cavitation", {})
     coefficient_solves = s.get("coefficient_linear_solver", {})
+    # `sealfe coefficients` times the whole operating-point run as its "solve" stage and has no
+    # finer stages: those columns stay empty in its rows (operating_point_time holds the run)
+    coefficients = command == "coefficients"
+    stage = (lambda key: None) if coefficients else (lambda key: st.get(key, 0))
     return {"dofs": s["dofs"], "ranks": ranks, "process_wall": round(wall, 3),
-            "inprocess": s.get("wall_time"), "setup": st.get("setup", 0),
-            "assemble": st.get("assemble", 0), "loads": st.get("loads", 0),
-            "solve": st.get("solve", 0), "cavitation_time": st.get("cavitation", 0),
-            "linear_setup": st.get("linear solver setup", 0),
+            "inprocess": s.get("wall_time"), "setup": stage("setup"),
+            "assemble": stage("assemble"), "loads": stage("loads"),
+            "solve": stage("solve"), "cavitation_time": stage("cavitation"),
+            "linear_setup": stage("linear solver setup"),
+            "operating_point_time": st.get("solve") if coefficients else None,
             "cg_iterations": ls.get("krylov_iterations"), "method": ls.get("method"),
             "factorizations": ls.get("factorizations"),
             "workspace_retries": ls.get("workspace_retries"),
@@ -132,6 +138,103 @@ def read_rows(path):
                         pass
         rows.append(r)
     return rows
+
+
+def plot(rows, studies):
+    """scaling.png: one row of panels per study in `studies` (amg, gmg, coefficients)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(studies), 3, figsize=(15, 4.8 * len(studies)), squeeze=False)
+    for ax, study in zip(axes, studies):
+        # the CG iterations plotted: the full film's, or the most of the coefficient set's six
+        # linearised solves
+        its = "coefficient_cg_max" if study == "coefficients" else "cg_iterations"
+        solver_name = "GMG" if study == "coefficients" else study.upper()
+        colours = {1: "tab:blue", 2: "tab:orange", 16: "tab:green", 32: "tab:red"}
+        markers = {1: "s", 2: "o", 3: "^"}
+        for k in (1, 2, 3):
+            for aspect in (1, 2, 16, 32):
+                for ranks in (1, 2):
+                    sel = sorted([r for r in rows if r["study"] == study and r["degree"] == k
+                                  and r["aspect"] == aspect and r.get("ranks") == ranks
+                                  and "dofs" in r], key=lambda r: r["dofs"])
+                    if not sel:
+                        continue
+                    lab = f"k={k}, Nθ/Nr={aspect}" + (", 2 ranks" if ranks == 2 else "")
+                    style = "--" if ranks == 2 else "-"
+                    if study == "coefficients":
+                        ax[0].semilogx([r["dofs"] for r in sel],
+                                       [r["coefficient_cost_ratio"] for r in sel],
+                                       markers[k] + style, color=colours[aspect], label=lab, ms=4)
+                    else:
+                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                     markers[k] + style, color=colours[aspect], label=lab, ms=4)
+                    if ranks == 1:
+                        ax[1].semilogx([r["dofs"] for r in sel], [r[its] for r in sel],
+                                       markers[k] + "-", color=colours[aspect], label=lab, ms=4)
+        if study == "gmg":
+            # the rank ladders on 1 and 2 ranks: full film (k = 2, aspect 16, `auto`: direct
+            # below 1.5e5 dofs) and JFO (tilted VG, `auto`)
+            for ranks, style in ((1, "-"), (2, "--")):
+                for ladder, marker, colour, name in (
+                        ("ranks", "D", "k", "k=2, Nθ/Nr=16, auto"),
+                        ("jforanks", "P", "tab:purple", "JFO tilted VG, auto")):
+                    sel = sorted([r for r in rows if r["study"] == ladder and r.get("ranks") == ranks
+                                  and "dofs" in r], key=lambda r: r["dofs"])
+                    if sel:
+                        ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
+                                     marker + style, color=colour, ms=4,
+                                     label=f"{name}, {ranks} rank" + ("s" if ranks > 1 else ""))
+        # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
+        ref = [r for r in rows if r["study"] == study and r.get("nr") == 128 and r.get("aspect") == 16
+               and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
+        if ref and study != "coefficients":
+            x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
+            xs = [1e4, 5e6]
+            ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
+        # CG iterations against the aspect, at comparable sizes: the mesh of each degree and
+        # aspect nearest (in log) to 3e4, 2.5e5 and 1e6 dofs
+        for target, style in ((3e4, ":"), (2.5e5, "--"), (1e6, "-")):
+            for k in (1, 2, 3):
+                pts = []
+                for aspect in (1, 2, 16, 32):
+                    sel = [r for r in rows if r["study"] == study and r["degree"] == k
+                           and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
+                    if sel:
+                        best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
+                        if abs(math.log(best["dofs"] / target)) < math.log(2.5):
+                            pts.append((aspect, best[its]))
+                if pts:
+                    ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
+                                   label=f"k={k}, ~{target:.0e} dofs", base=2)
+        what = ("coefficient set: most CG iterations of its 6 linearised solves"
+                if study == "coefficients" else "CG iterations")
+        ax[0].set_xlabel("dofs")
+        if study == "coefficients":
+            ax[0].set_ylabel("coefficient set time / operating-point solve time")
+            ax[0].set_title("coefficient set (6 linearised solves, CG + GMG) against its solve",
+                            fontsize=9)
+            ax[0].set_ylim(bottom=0)
+        else:
+            ax[0].set_ylabel("whole-process wall time [s]")
+            ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)"
+                            + ("; rank ladders of full film and JFO" if study == "gmg" else ""),
+                            fontsize=9)
+        ax[0].legend(fontsize=6, ncol=2)
+        ax[1].set_xlabel("dofs"); ax[1].set_ylabel(what + " (relative residual 1e-12)", fontsize=8)
+        ax[1].set_title(f"CG + {solver_name}: {what} against size", fontsize=9)
+        ax[1].axhline(25, color="k", ls=":", lw=1)
+        ax[1].legend(fontsize=6, ncol=2)
+        ax[2].set_xlabel("cell aspect Nθ/Nr (cells around / cells across)")
+        ax[2].set_ylabel(what + " (relative residual 1e-12)", fontsize=8)
+        ax[2].set_title(f"CG + {solver_name}: {what} against aspect", fontsize=9)
+        ax[2].axhline(25, color="k", ls=":", lw=1)
+        ax[2].legend(fontsize=7)
+        for x in ax[1:]:
+            x.set_ylim(bottom=0)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "scaling.png"), dpi=110)
 
 
 def main():
@@ -230,103 +333,14 @@ def main():
             w = csv.DictWriter(f, fieldnames=keys)
             w.writeheader()
             w.writerows(rows)
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        studies = [st for st in ("amg", "gmg", "coefficients") if any(r["study"] == st for r in rows)]
-        fig, axes = plt.subplots(len(studies), 3, figsize=(15, 4.8 * len(studies)), squeeze=False)
-        for ax, study in zip(axes, studies):
-            # the CG iterations plotted: the full film's, or the most of the coefficient set's six
-            # linearised solves
-            its = "coefficient_cg_max" if study == "coefficients" else "cg_iterations"
-            solver_name = "GMG" if study == "coefficients" else study.upper()
-            colours = {1: "tab:blue", 2: "tab:orange", 16: "tab:green", 32: "tab:red"}
-            markers = {1: "s", 2: "o", 3: "^"}
-            for k in (1, 2, 3):
-                for aspect in (1, 2, 16, 32):
-                    for ranks in (1, 2):
-                        sel = sorted([r for r in rows if r["study"] == study and r["degree"] == k
-                                      and r["aspect"] == aspect and r.get("ranks") == ranks
-                                      and "dofs" in r], key=lambda r: r["dofs"])
-                        if not sel:
-                            continue
-                        lab = f"k={k}, Nθ/Nr={aspect}" + (", 2 ranks" if ranks == 2 else "")
-                        style = "--" if ranks == 2 else "-"
-                        if study == "coefficients":
-                            ax[0].semilogx([r["dofs"] for r in sel],
-                                           [r["coefficient_cost_ratio"] for r in sel],
-                                           markers[k] + style, color=colours[aspect], label=lab, ms=4)
-                        else:
-                            ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
-                                         markers[k] + style, color=colours[aspect], label=lab, ms=4)
-                        if ranks == 1:
-                            ax[1].semilogx([r["dofs"] for r in sel], [r[its] for r in sel],
-                                           markers[k] + "-", color=colours[aspect], label=lab, ms=4)
-            if study == "gmg":
-                # the rank ladders on 1 and 2 ranks: full film (k = 2, aspect 16, `auto`: direct
-                # below 1.5e5 dofs) and JFO (tilted VG, `auto`)
-                for ranks, style in ((1, "-"), (2, "--")):
-                    for ladder, marker, colour, name in (
-                            ("ranks", "D", "k", "k=2, Nθ/Nr=16, auto"),
-                            ("jforanks", "P", "tab:purple", "JFO tilted VG, auto")):
-                        sel = sorted([r for r in rows if r["study"] == ladder and r.get("ranks") == ranks
-                                      and "dofs" in r], key=lambda r: r["dofs"])
-                        if sel:
-                            ax[0].loglog([r["dofs"] for r in sel], [r["process_wall"] for r in sel],
-                                         marker + style, color=colour, ms=4,
-                                         label=f"{name}, {ranks} rank" + ("s" if ranks > 1 else ""))
-            # reference slope 1 (time proportional to dofs) through the 1.05e6-dof point
-            ref = [r for r in rows if r["study"] == study and r.get("nr") == 128 and r.get("aspect") == 16
-                   and r.get("degree") == 2 and r.get("ranks") == 1 and "dofs" in r]
-            if ref and study != "coefficients":
-                x0, y0 = ref[0]["dofs"], ref[0]["process_wall"]
-                xs = [1e4, 5e6]
-                ax[0].loglog(xs, [y0 * x / x0 for x in xs], "k:", lw=1, label="∝ dofs")
-            # CG iterations against the aspect, at comparable sizes: the mesh of each degree and
-            # aspect nearest (in log) to 3e4, 2.5e5 and 1e6 dofs
-            for target, style in ((3e4, ":"), (2.5e5, "--"), (1e6, "-")):
-                for k in (1, 2, 3):
-                    pts = []
-                    for aspect in (1, 2, 16, 32):
-                        sel = [r for r in rows if r["study"] == study and r["degree"] == k
-                               and r["aspect"] == aspect and r.get("ranks") == 1 and "dofs" in r]
-                        if sel:
-                            best = min(sel, key=lambda r: abs(math.log(r["dofs"] / target)))
-                            if abs(math.log(best["dofs"] / target)) < math.log(2.5):
-                                pts.append((aspect, best[its]))
-                    if pts:
-                        ax[2].semilogx([p[0] for p in pts], [p[1] for p in pts], markers[k] + style,
-                                       label=f"k={k}, ~{target:.0e} dofs", base=2)
-            what = ("coefficient set: most CG iterations of its 6 linearised solves"
-                    if study == "coefficients" else "CG iterations")
-            ax[0].set_xlabel("dofs")
-            if study == "coefficients":
-                ax[0].set_ylabel("coefficient set time / operating-point solve time")
-                ax[0].set_title("coefficient set (6 linearised solves, CG + GMG) against its solve",
-                                fontsize=9)
-                ax[0].set_ylim(bottom=0)
-            else:
-                ax[0].set_ylabel("whole-process wall time [s]")
-                ax[0].set_title(f"full film, CG + {study.upper()} (one run each, shared machine)"
-                                + ("; rank ladders of full film and JFO" if study == "gmg" else ""),
-                                fontsize=9)
-            ax[0].legend(fontsize=6, ncol=2)
-            ax[1].set_xlabel("dofs"); ax[1].set_ylabel(what + " (relative residual 1e-12)", fontsize=8)
-            ax[1].set_title(f"CG + {solver_name}: {what} against size", fontsize=9)
-            ax[1].axhline(25, color="k", ls=":", lw=1)
-            ax[1].legend(fontsize=6, ncol=2)
-            ax[2].set_xlabel("cell aspect Nθ/Nr (cells around / cells across)")
-            ax[2].set_ylabel(what + " (relative residual 1e-12)", fontsize=8)
-            ax[2].set_title(f"CG + {solver_name}: {what} against aspect", fontsize=9)
-            ax[2].axhline(25, color="k", ls=":", lw=1)
-            ax[2].legend(fontsize=7)
-            for x in ax[1:]:
-                x.set_ylim(bottom=0)
-        fig.tight_layout()
-        fig.savefig(os.path.join(HERE, "scaling.png"), dpi=110)
-    except ImportError:
-        print("no plot written")
+    studies = [st for st in ("amg", "gmg", "coefficients") if any(r["study"] == st for r in rows)]
+    if not studies:
+        print("no plot written: no amg, gmg or coefficients rows")
+    else:
+        try:
+            plot(rows, studies)
+        except ImportError:
+            print("no plot written (no matplotlib)")
     shutil.rmtree(work, ignore_errors=True)
 
 

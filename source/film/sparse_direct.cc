@@ -382,6 +382,7 @@ void SparseDirect::clear()
   problem.reset();
   pattern_owner = nullptr;
   pattern_entries = -1;
+  package = ""; // no factorisation: none to name (a later method may not factorise at all)
 }
 
 void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix)

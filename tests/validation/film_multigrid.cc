@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace sealfe;
@@ -98,10 +99,13 @@ TEST(FilmMultigrid, IterationsBoundedOverAspectSizeAndDegree)
 TEST(FilmMultigrid, CoefficientSetMatchesTheDirectSolveToTheSolverTolerance)
 {
   // Each entry of K and D is a load functional of a linearised pressure, solved by CG with the
-  // operating point's V-cycle: the argument of LoadsMatchTheDirectSolveToTheSolverTolerance
-  // bounds its error by tau |z| |b| for the direction's right-hand side b. Entries of different
-  // units are measured against sqrt(|X_ii X_jj|) (the scale of the coefficients' error estimate),
-  // and the cross entries of the tilted seal are of that size: 100 tau of it.
+  // operating point's V-cycle. Two CG errors reach it: that of the linearised solve (the
+  // argument of LoadsMatchTheDirectSolveToTheSolverTolerance: tau |z| |b| for the direction's
+  // right-hand side b) and that of the operating point's pressure, which enters b through
+  // dK/dh . grad p (stiffness columns; the damping's squeeze right-hand side has no p), also
+  // relative tau. Both O(tau) relative to the entry's scale; two decades of margin. Entries of
+  // different units are measured against the scale of the coefficients' error estimate,
+  // max(sqrt(|X_ii X_jj|), |X_ij|) (coefficient_solver.cc): 100 tau of it.
   for (const double tau : {1e-8, 1e-12})
     for (const unsigned int degree : {1u, 2u, 3u})
     {
@@ -123,7 +127,8 @@ TEST(FilmMultigrid, CoefficientSetMatchesTheDirectSolveToTheSolverTolerance)
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = 0; j < 3; ++j)
             EXPECT_LE(std::abs(y[i][j] - x[i][j]),
-                      100 * tau * std::sqrt(std::abs(x[i][i] * x[j][j])))
+                      100 * tau *
+                          std::max(std::sqrt(std::abs(x[i][i] * x[j][j])), std::abs(x[i][j])))
                 << (m == &FilmCoefficients::stiffness ? "K" : "D") << "(" << i << ", " << j
                 << "), degree " << degree << ", tau " << tau;
       }
@@ -134,8 +139,9 @@ TEST(FilmMultigrid, CoefficientSolvesIterationsBoundedOverAspectSizeAndDegree)
 {
   // The goal of issue 13 holds for the linearised coefficient solves too: at most ~25 CG
   // iterations each, on the meshes of IterationsBoundedOverAspectSizeAndDegree. Their
-  // right-hand sides are the derivatives of the Couette and squeeze terms along the three
-  // mode shapes (axial, two tilts), not the full film's.
+  // right-hand sides are the derivatives along the three mode shapes (axial, two tilts) of the
+  // Couette term and of the pressure flow at the operating point's pressure (dK/dh . grad p),
+  // and the squeeze term for the damping columns: not the full film's.
   const unsigned int bound = 25;
   auto check = [&](const unsigned int degree, const unsigned int nr, const unsigned int nt,
                    const unsigned int refinements)
@@ -149,7 +155,6 @@ TEST(FilmMultigrid, CoefficientSolvesIterationsBoundedOverAspectSizeAndDegree)
     EXPECT_GT(r.coefficient_linear.krylov_iterations, 0u);
     EXPECT_LE(r.coefficient_linear.max_krylov_iterations, bound)
         << "Ntheta/Nr = " << nt / nr << ", " << r.dofs << " dofs, degree " << degree;
-    EXPECT_LE(r.operating_point_linear.max_krylov_iterations, bound);
   };
   for (const unsigned int aspect : {1u, 4u, 32u})
   {

@@ -139,11 +139,13 @@ public:
   const ReynoldsSolver *coarse_level_solver() const { return coarse_solver.get(); }
   bool error_estimate_enabled() const { return estimate_error; }
   unsigned int linear_iterations() const { return last_iterations; }
-  /// Factorisations, solves and Krylov iterations of the last run (and its linearised solves).
+  /// Factorisations, solves and Krylov iterations of the last run (and its linearised solves),
+  /// or since the last reset_linear_solver_statistics() (after CoefficientSolver::compute() with
+  /// the perturbation method: the coefficient set's linearised solves only).
   const FilmLinearSolver &linear_solver_statistics() const { return linear_system_solver; }
   /// Count the linear solver's work afresh from here (run() does so itself): what the
   /// linearised solves after a run cost apart from the run (the coefficient set's summary).
-  void reset_linear_solver_statistics() const { linear_system_solver.reset_statistics(); }
+  void reset_linear_solver_statistics() { linear_system_solver.reset_statistics(); }
   /// Newton iterations and final relative mass residual of the cavitation solve (reynolds, jfo).
   unsigned int nonlinear_iterations() const { return cavitation_iterations; }
   /// Newton iterations spent on the coarser meshes that provided the JFO start (mesh sequencing).
