@@ -140,37 +140,6 @@ FilmThickness perturbed(const FilmThickness &film, const unsigned int j, const d
   return f;
 }
 
-/// ReynoldsSolver may offer the linearised loads of several directions in one call (one
-/// right-hand-side assembly and load integration pass for all, one solve each with the same
-/// factorisation): use it when it exists, else one call per direction.
-template <typename Solver, typename = void>
-struct has_batched_linearization : std::false_type
-{
-};
-template <typename Solver>
-struct has_batched_linearization<
-    Solver, std::void_t<decltype(std::declval<const Solver &>().linearized_loads(
-                std::declval<const std::vector<typename Solver::FilmPerturbation> &>()))>>
-    : std::true_type
-{
-};
-
-template <typename Solver>
-std::vector<FilmLoads>
-linearized_loads(const Solver &solver,
-                 const std::vector<typename Solver::FilmPerturbation> &directions)
-{
-  if constexpr (has_batched_linearization<Solver>::value)
-    return solver.linearized_loads(directions);
-  else
-  {
-    std::vector<FilmLoads> loads;
-    for (const auto &d : directions)
-      loads.push_back(solver.linearized_loads(d));
-    return loads;
-  }
-}
-
 double seconds_since(const std::chrono::steady_clock::time_point &start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -335,11 +304,13 @@ CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingCon
       directions[j].dh = mode_shapes()[j];
       directions[3 + j].dh_dt = mode_shapes()[j];
     }
-    const std::vector<FilmLoads> derivatives = linearized_loads(solver, directions);
+    // only force_z, moment_x and moment_y: on the multigrid three adjoint solves, not six
+    const std::vector<std::array<double, 3>> derivatives =
+        solver.linearized_generalized_forces(directions);
     for (unsigned int j = 0; j < 3; ++j)
     {
-      const auto dF = generalized_force(derivatives[j]);
-      const auto dF_rate = generalized_force(derivatives[3 + j]);
+      const auto &dF = derivatives[j];
+      const auto &dF_rate = derivatives[3 + j];
       for (unsigned int i = 0; i < 3; ++i)
       {
         c.stiffness[i][j] = -dF[i];

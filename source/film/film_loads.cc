@@ -871,4 +871,113 @@ LoadIntegrator::linearized_loads(const std::vector<FilmPerturbation> &perturbati
   return integrate(directions, dp_pointers, dv_pointers);
 }
 
+bool LoadIntegrator::adjoint_applies() const
+{
+  // CG was chosen for the matrix only because it is symmetric (full film, half-Sommerfeld); the
+  // cavitation models' Jacobians are not, and their loads are not linear in the nodal unknown
+  // alone (nodal_perturbations).
+  const auto method = solver.linear_solver_statistics().method();
+  return !solver.cavitation.is_nonlinear() &&
+         (method == FilmLinearSolver::Method::cg_gmg || method == FilmLinearSolver::Method::cg_amg);
+}
+
+std::array<LoadIntegrator::VectorType, 3> LoadIntegrator::generalized_force_functionals() const
+{
+  // The same points, weights and shape values as integrate (add_pressure_loads: sums 0, 1, 2), so
+  // that g_i . dp is its force and moments of dp to round-off.
+  const ReynoldsSolver &s = solver;
+  const QGauss<2> quadrature(s.polynomial_degree + 2);
+  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
+                        update_values | update_quadrature_points | update_JxW_values);
+  std::optional<PolarCellValues> polar;
+  if (polar_assembly())
+    polar.emplace(*s.mapping, *s.fe, quadrature);
+  const unsigned int n_q = quadrature.size(), n = s.fe->n_dofs_per_cell();
+  std::vector<double> p(n_q);
+  Vector<double> cell_p(n);
+  std::array<Vector<double>, 3> cell_g;
+  for (auto &c : cell_g)
+    c.reinit(n);
+  std::vector<types::global_dof_index> dofs(n);
+  std::array<VectorType, 3> g;
+  for (auto &v : g)
+    v.reinit(s.locally_owned_dofs, s.mpi_communicator);
+  for (const auto &cell : s.dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      const bool turned = polar && polar->reinit(cell);
+      if (turned)
+      {
+        cell->get_dof_values(s.locally_relevant_solution, cell_p);
+        polar->get_function_values(cell_p, p);
+      }
+      else
+      {
+        fe_values.reinit(cell);
+        fe_values.get_function_values(s.locally_relevant_solution, p);
+      }
+      for (auto &c : cell_g)
+        c = 0;
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        if (clip && p[q] < p_cav)
+          continue; // half-Sommerfeld: the clipped pressure does not move (add_pressure_loads)
+        const Point<2> x = turned ? polar->quadrature_point(q) : fe_values.quadrature_point(q);
+        const double JxW = turned ? polar->JxW(q) : fe_values.JxW(q);
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          const double phi =
+              (turned ? polar->shape_value(j, q) : fe_values.shape_value(j, q)) * JxW;
+          cell_g[0](j) += phi;
+          cell_g[1](j) += phi * x[1];
+          cell_g[2](j) += -phi * x[0];
+        }
+      }
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < 3; ++i)
+        s.homogeneous_constraints.distribute_local_to_global(cell_g[i], dofs, g[i]);
+    }
+  for (auto &v : g)
+    v.compress(VectorOperation::add);
+  return g;
+}
+
+std::vector<std::array<double, 3>> LoadIntegrator::linearized_generalized_forces(
+    const std::vector<FilmPerturbation> &perturbations) const
+{
+  std::vector<std::array<double, 3>> forces;
+  if (!adjoint_applies())
+  {
+    for (const FilmLoads &l : linearized_loads(perturbations))
+      forces.push_back({{l.force_z, l.moment_x, l.moment_y}});
+    return forces;
+  }
+  // dL_i = g_i . C du_k with A du_k = b_k, A symmetric: = (A^-1 C^T g_i) . b_k = z_i . b_k. The
+  // directions' terms at du = 0 (asperity contact: dcontact/dh dh, add_pressure_loads' only
+  // term of the film alone) come from integrate with no pressure change. A Krylov solve per
+  // load instead of per direction: its cost, not the right-hand sides', dominates the
+  // coefficient set on the multigrid (doc/performance.md, "Session 25").
+  const ReynoldsSolver &s = solver;
+  const std::vector<VectorType> rhs = linearized_right_hand_sides(perturbations);
+  if (s.contact.enabled())
+  {
+    std::vector<const FilmPerturbation *> directions;
+    for (const auto &d : perturbations)
+      directions.push_back(&d);
+    for (const FilmLoads &l : integrate(directions, {}, {}))
+      forces.push_back({{l.force_z, l.moment_x, l.moment_y}});
+  }
+  else
+    forces.assign(perturbations.size(), {{0.0, 0.0, 0.0}});
+  const std::array<VectorType, 3> g = generalized_force_functionals();
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    VectorType z(s.locally_owned_dofs, s.mpi_communicator);
+    s.solve_linear_system(g[i], z);
+    for (unsigned int k = 0; k < perturbations.size(); ++k)
+      forces[k][i] += z * rhs[k];
+  }
+  return forces;
+}
+
 } // namespace sealfe

@@ -703,6 +703,13 @@ ReynoldsSolver::linearized_loads(const std::vector<FilmPerturbation> &perturbati
   return LoadIntegrator(*this).linearized_loads(perturbations);
 }
 
+std::vector<std::array<double, 3>> ReynoldsSolver::linearized_generalized_forces(
+    const std::vector<FilmPerturbation> &perturbations) const
+{
+  TimerOutput::Scope t(timer, "linearized solve");
+  return LoadIntegrator(*this).linearized_generalized_forces(perturbations);
+}
+
 FilmLoads ReynoldsSolver::run(const FilmThickness &film_in,
                               const OperatingConditions &conditions_in,
                               const unsigned int coarsening)

@@ -5,9 +5,11 @@
 //  - the CG iterations stay at most 25 (the goal of issue 13) over the mesh aspect
 //    Ntheta/Nr = 1 .. 32, three levels of refinement and degrees 1 .. 3: a multigrid whose
 //    convergence does not depend on the cell aspect (up to ~45:1 here) or on the mesh size;
-//  - the linearised solves of the coefficient set (stiffness and damping, perturbation method)
-//    reuse its V-cycle: their K and D are the direct solve's to the CG tolerance, in at most 25
-//    iterations each over the same aspects, sizes and degrees;
+//  - the coefficient set (stiffness and damping, perturbation method) reuses its V-cycle for
+//    three adjoint solves (one per load: force, two moments) instead of six linearised ones:
+//    its K and D are the direct solve's six linearised solves' to the CG tolerance, also with
+//    asperity contact (a load term of the film alone) and half-Sommerfeld (clipped points), in
+//    at most 25 iterations each over the same aspects, sizes and degrees;
 //  - `auto` picks it above the direct-solver limit on the built-in mesh only.
 #include <sealfe/coefficients/coefficient_solver.h>
 #include <sealfe/film/reynolds_solver.h>
@@ -98,14 +100,15 @@ TEST(FilmMultigrid, IterationsBoundedOverAspectSizeAndDegree)
 
 TEST(FilmMultigrid, CoefficientSetMatchesTheDirectSolveToTheSolverTolerance)
 {
-  // Each entry of K and D is a load functional of a linearised pressure, solved by CG with the
-  // operating point's V-cycle. Two CG errors reach it: that of the linearised solve (the
-  // argument of LoadsMatchTheDirectSolveToTheSolverTolerance: tau |z| |b| for the direction's
-  // right-hand side b) and that of the operating point's pressure, which enters b through
-  // dK/dh . grad p (stiffness columns; the damping's squeeze right-hand side has no p), also
-  // relative tau. Both O(tau) relative to the entry's scale; two decades of margin. Entries of
-  // different units are measured against the scale of the coefficients' error estimate,
-  // max(sqrt(|X_ii X_jj|), |X_ij|) (coefficient_solver.cc): 100 tau of it.
+  // Each entry of K and D is a load functional g . A^-1 b of a linearised pressure; with CG it is
+  // z . b, z the adjoint solution A z = g by CG with the operating point's V-cycle (A is
+  // symmetric). Two CG errors reach it: that of the adjoint solve (the argument of
+  // LoadsMatchTheDirectSolveToTheSolverTolerance with the roles of g and b exchanged: tau |g|
+  // |A^-1 b|) and that of the operating point's pressure, which enters b through dK/dh . grad p
+  // (stiffness columns; the damping's squeeze right-hand side has no p), also relative tau. Both
+  // O(tau) relative to the entry's scale; two decades of margin. Entries of different units are
+  // measured against the scale of the coefficients' error estimate, max(sqrt(|X_ii X_jj|), |X_ij|)
+  // (coefficient_solver.cc): 100 tau of it.
   for (const double tau : {1e-8, 1e-12})
     for (const unsigned int degree : {1u, 2u, 3u})
     {
@@ -117,8 +120,9 @@ TEST(FilmMultigrid, CoefficientSetMatchesTheDirectSolveToTheSolverTolerance)
       const CoefficientResult a = direct.compute(), b = gmg.compute();
       ASSERT_EQ(b.linear_method, "cg-gmg");
       ASSERT_EQ(a.linear_method, "direct");
-      // the six linearised solves reuse the operating point's V-cycle and factorisation
-      EXPECT_EQ(b.coefficient_linear.solves, 6u);
+      // six linearised solves with the factorisation, three adjoint ones with the V-cycle
+      EXPECT_EQ(a.coefficient_linear.solves, 6u);
+      EXPECT_EQ(b.coefficient_linear.solves, 3u);
       EXPECT_EQ(b.coefficient_linear.factorizations, 0u);
       EXPECT_EQ(a.coefficient_linear.factorizations, 0u);
       for (const auto m : {&FilmCoefficients::stiffness, &FilmCoefficients::damping})
@@ -133,6 +137,58 @@ TEST(FilmMultigrid, CoefficientSetMatchesTheDirectSolveToTheSolverTolerance)
                 << "), degree " << degree << ", tau " << tau;
       }
     }
+}
+
+TEST(FilmMultigrid, AdjointCoefficientsWithContactAndHalfSommerfeld)
+{
+  // The two terms the adjoint path handles apart from g . A^-1 b: asperity contact, whose load
+  // changes with the film alone (dcontact/dh dh, taken from the loads at zero pressure change),
+  // and half-Sommerfeld, whose clipped points drop out of g. Same bound as above (tau = 1e-12).
+  const double tau = 1e-12;
+  for (const bool half_sommerfeld : {false, true})
+  {
+    auto settings = [&](const FilmSettings::LinearSolver method)
+    {
+      FilmSettings s = tilted_seal(2, 16, 64, 0, method);
+      if (half_sommerfeld)
+      {
+        s.cavitation.model = Cavitation::half_sommerfeld;
+        s.conditions.outer_pressure = 0; // pure hydrodynamics: about half of the dam cavitates
+      }
+      else
+      {
+        // Patir & Cheng sigma = 0.2 um with GW/CEB contact: the thinnest film (0.57 um) is 2.8
+        // sigma, where the asperities carry part of the load
+        s.flow_factors = FlowFactors(FlowFactors::Model::patir_cheng, 0.2e-6);
+        AsperityContactParameters contact;
+        contact.composite_roughness = 0.2e-6;
+        s.contact = AsperityContact(AsperityContact::Model::gw_ceb, contact);
+      }
+      s.solver_tolerance = tau;
+      return s;
+    };
+    CoefficientSolver direct(settings(FilmSettings::LinearSolver::direct), CoefficientSettings(),
+                             MPI_COMM_WORLD);
+    CoefficientSolver gmg(settings(FilmSettings::LinearSolver::cg_gmg), CoefficientSettings(),
+                          MPI_COMM_WORLD);
+    const CoefficientResult a = direct.compute(), b = gmg.compute();
+    ASSERT_EQ(b.linear_method, "cg-gmg");
+    EXPECT_EQ(b.coefficient_linear.solves, 3u);
+    if (half_sommerfeld)
+      EXPECT_GT(a.loads.cavitated_fraction, 0.2);
+    else
+      EXPECT_GT(a.loads.contact_force, 0.0);
+    for (const auto m : {&FilmCoefficients::stiffness, &FilmCoefficients::damping})
+    {
+      const auto &x = a.coefficients.*m, &y = b.coefficients.*m;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          EXPECT_LE(std::abs(y[i][j] - x[i][j]),
+                    100 * tau * std::max(std::sqrt(std::abs(x[i][i] * x[j][j])), std::abs(x[i][j])))
+              << (m == &FilmCoefficients::stiffness ? "K" : "D") << "(" << i << ", " << j << ")"
+              << (half_sommerfeld ? ", half-Sommerfeld" : ", contact");
+    }
+  }
 }
 
 TEST(FilmMultigrid, CoefficientSolvesIterationsBoundedOverAspectSizeAndDegree)
@@ -151,7 +207,7 @@ TEST(FilmMultigrid, CoefficientSolvesIterationsBoundedOverAspectSizeAndDegree)
         CoefficientSettings(), MPI_COMM_WORLD);
     const CoefficientResult r = s.compute();
     ASSERT_EQ(r.linear_method, "cg-gmg");
-    EXPECT_EQ(r.coefficient_linear.solves, 6u);
+    EXPECT_EQ(r.coefficient_linear.solves, 3u); // the adjoint solves
     EXPECT_GT(r.coefficient_linear.krylov_iterations, 0u);
     EXPECT_LE(r.coefficient_linear.max_krylov_iterations, bound)
         << "Ntheta/Nr = " << nt / nr << ", " << r.dofs << " dofs, degree " << degree;

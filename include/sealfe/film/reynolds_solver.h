@@ -83,6 +83,11 @@ public:
   /// The same for several directions at once: one assembly loop for all right-hand sides and one
   /// solve each with the same factorisation (what the 6-direction coefficient set uses).
   std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
+  /// Only the derivatives of (force_z, moment_x, moment_y) along each direction: where CG solves
+  /// the (symmetric) system, by three adjoint solves whatever the number of directions
+  /// (LoadIntegrator::linearized_generalized_forces); else from linearized_loads.
+  std::vector<std::array<double, 3>>
+  linearized_generalized_forces(const std::vector<FilmPerturbation> &perturbations) const;
 
   /// The film's coefficients at one point, for every term of the (average) Reynolds equation.
   struct LocalFilm
