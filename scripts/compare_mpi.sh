@@ -3,11 +3,11 @@
 # `auto`, which is direct on one rank and cg-gmg on two, to 1e-10); cg-gmg on 2 and 3 ranks the
 # loads of the direct solver on one (1e-9).
 # Usage: compare_mpi.sh path/to/sealfe [case ...]   (cases: direct cg-amg cg-gmg auto jfo
-# jfo-auto gmg-vs-direct fitted; default all)
+# jfo-auto gmg-vs-direct coefficients fitted; default all)
 set -euo pipefail
 sealfe=$1
 shift
-cases=${*:-direct cg-amg cg-gmg auto jfo jfo-auto gmg-vs-direct fitted}
+cases=${*:-direct cg-amg cg-gmg auto jfo jfo-auto gmg-vs-direct coefficients fitted}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -138,6 +138,37 @@ if [[ " $cases " == *" gmg-vs-direct "* ]]; then
   methods "$work"/np{1,2,3}-gmg-vs-direct/summary.json direct cg-gmg cg-gmg
   compare "$work/np1-gmg-vs-direct" "$work/np2-gmg-vs-direct" "cg-gmg (2) vs direct (1)" 2
   compare "$work/np1-gmg-vs-direct" "$work/np3-gmg-vs-direct" "cg-gmg (3) vs direct (1)" 3
+fi
+# `sealfe coefficients` with `auto`: one rank factorises and takes six linearised solves, two and
+# three take cg-gmg and the coefficient set's three adjoint solves (one per load, split among the
+# ranks). K and D must agree to 1e-9 of each entry's scale max(sqrt|X_ii X_jj|, |X_ij|): each
+# entry is a load functional of a linearised pressure, g.A^-1 b, and the adjoint solve's error is
+# bounded as for the loads above (1e-12 |z||b|); the operating point's CG error enters b alike.
+if [[ " $cases " == *" coefficients "* ]]; then
+  for n in 1 2 3; do
+    write_case "$work/np$n-coefficients" auto none 4e5
+    mpirun -np $n "$sealfe" coefficients "$work/case.prm" > /dev/null
+  done
+  python3 - "$work"/np{1,2,3}-coefficients/summary.json <<'PY'
+import json, math, sys
+runs = [json.load(open(f)) for f in sys.argv[1:]]
+assert [r["mpi_ranks"] for r in runs] == [1, 2, 3]
+methods = [r["linear_solver"]["method"] for r in runs]
+solves = [r["coefficient_linear_solver"]["solves"] for r in runs]
+print(f"coefficients: linear solver {methods}, coefficient-set solves {solves}")
+ok = methods == ["direct", "cg-gmg", "cg-gmg"] and solves == [6, 3, 3]
+for r in runs[1:]:
+    worst = 0.0
+    for m in ("stiffness", "damping"):
+        x, y = runs[0][m], r[m]
+        for i in range(3):
+            for j in range(3):
+                scale = max(math.sqrt(abs(x[i][i] * x[j][j])), abs(x[i][j]))
+                worst = max(worst, abs(y[i][j] - x[i][j]) / scale)
+    print(f"coefficients: max relative difference of K, D, 1 vs {r['mpi_ranks']} ranks = {worst:.2e}")
+    ok = ok and worst < 1e-9
+sys.exit(0 if ok else 1)
+PY
 fi
 # the dimpled face on the mesh gmsh generates (rank 0 generates and reads it, the ranks get its
 # text), with its JFO coarse levels; needs the gmsh program

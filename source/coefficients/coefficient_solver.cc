@@ -16,7 +16,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -31,7 +30,8 @@ void CoefficientSettings::declare_parameters(ParameterHandler &prm)
       "Method", "perturbation", Patterns::Selection("perturbation|finite difference"),
       "perturbation: linearise the discrete Reynolds system about the solved pressure and solve "
       "it once per degree of freedom (z, tilt_x, tilt_y) and per rate, reusing the factorisation "
-      "of the operating-point solve (6 extra linear solves). finite difference: central "
+      "of the operating-point solve (6 extra linear solves; where CG solves the film, 3 adjoint "
+      "solves with its preconditioner, one per load). finite difference: central "
       "differences of the full nonlinear solve (12 extra solves), to check the perturbation "
       "method.");
   prm.declare_entry("Relative step", "1e-4", Patterns::Double(),
@@ -96,7 +96,7 @@ namespace
 {
 using Matrix3 = FilmCoefficients::Matrix3;
 
-/// F = (F_z, M_x, M_y) of a set of loads (or of their derivatives).
+/// F = (F_z, M_x, M_y) of a set of loads.
 std::array<double, 3> generalized_force(const FilmLoads &l)
 {
   return {{l.force_z, l.moment_x, l.moment_y}};
@@ -304,7 +304,7 @@ CoefficientSolver::compute_on_mesh(const FilmThickness &film, const OperatingCon
       directions[j].dh = mode_shapes()[j];
       directions[3 + j].dh_dt = mode_shapes()[j];
     }
-    // only force_z, moment_x and moment_y: on the multigrid three adjoint solves, not six
+    // only force_z, moment_x and moment_y: with CG three adjoint solves, not six
     const std::vector<std::array<double, 3>> derivatives =
         solver.linearized_generalized_forces(directions);
     for (unsigned int j = 0; j < 3; ++j)

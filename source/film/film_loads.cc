@@ -871,13 +871,15 @@ LoadIntegrator::linearized_loads(const std::vector<FilmPerturbation> &perturbati
   return integrate(directions, dp_pointers, dv_pointers);
 }
 
-bool LoadIntegrator::adjoint_applies() const
+bool LoadIntegrator::adjoint_applies(const std::size_t n_directions) const
 {
   // CG was chosen for the matrix only because it is symmetric (full film, half-Sommerfeld); the
   // cavitation models' Jacobians are not, and their loads are not linear in the nodal unknown
-  // alone (nodal_perturbations).
+  // alone (nodal_perturbations). A back-substitution costs little beside the factorisation, so
+  // the direct solver keeps one solve per direction (and its results to the bit); with three
+  // directions or fewer the adjoint's three solves would not be fewer.
   const auto method = solver.linear_solver_statistics().method();
-  return !solver.cavitation.is_nonlinear() &&
+  return n_directions > 3 && !solver.cavitation.is_nonlinear() &&
          (method == FilmLinearSolver::Method::cg_gmg || method == FilmLinearSolver::Method::cg_amg);
 }
 
@@ -946,7 +948,7 @@ std::vector<std::array<double, 3>> LoadIntegrator::linearized_generalized_forces
     const std::vector<FilmPerturbation> &perturbations) const
 {
   std::vector<std::array<double, 3>> forces;
-  if (!adjoint_applies())
+  if (!adjoint_applies(perturbations.size()))
   {
     for (const FilmLoads &l : linearized_loads(perturbations))
       forces.push_back({{l.force_z, l.moment_x, l.moment_y}});

@@ -28,8 +28,9 @@ struct CoefficientSettings
   enum class Method
   {
     /// The Reynolds system linearised about the solved pressure: one extra linear solve per
-    /// degree of freedom and per rate, with the factorisation of the operating-point solve
-    /// (ReynoldsSolver::linearized_loads).
+    /// degree of freedom and per rate with the factorisation of the operating-point solve, or,
+    /// where CG solves it, three adjoint solves (one per load) with its preconditioner
+    /// (ReynoldsSolver::linearized_generalized_forces).
     perturbation,
     /// Central differences of the nonlinear solve: two full solves per column of K and of D.
     finite_difference
@@ -88,14 +89,14 @@ struct CoefficientResult
   dealii::types::global_dof_index dofs = 0;
   unsigned int degree = 0;
   double solve_time = 0;          // s, the operating-point solve (setup, assembly, factorisation)
-  double coefficient_time = 0;    // s, the 6 linearised solves (or 12 perturbed solves)
+  double coefficient_time = 0;    // s, the linearised (or adjoint, or 12 perturbed) solves
   double error_estimate_time = 0; // s, everything on the coarse mesh
 
   /// The linear solver on the fine mesh: its method and direct package, and its work for the
   /// operating-point solve (summary.json `linear_solver`, as `sealfe solve` reports it) and for
   /// the coefficient set (`coefficient_linear_solver`: the 6 linearised solves with the
-  /// operating point's factorisation or preconditioner, or the linear solves of the 12
-  /// perturbed solves of the finite-difference method).
+  /// operating point's factorisation, the 3 adjoint solves with its CG preconditioner, or the
+  /// linear solves of the 12 perturbed solves of the finite-difference method).
   std::string linear_method, direct_package;
   FilmLinearSolver::Statistics operating_point_linear, coefficient_linear;
 

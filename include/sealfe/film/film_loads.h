@@ -90,7 +90,9 @@ struct AffineLoadSums
 
 /// Loads of a ReynoldsSolver's last solution, and their derivatives along film perturbations
 /// (ReynoldsSolver::linearized_loads). One integration routine for both, so that the
-/// linearisation differentiates exactly what the loads integrate.
+/// linearisation differentiates exactly what the loads integrate; the adjoint path's load
+/// functionals (generalized_force_functionals) restate add_pressure_loads' force and moment
+/// weights, and tests/validation/film_multigrid.cc holds the two paths to the CG tolerance.
 class LoadIntegrator
 {
 public:
@@ -113,16 +115,17 @@ public:
   /// solved state, one solve each with the solver's factorisation.
   std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
   /// Derivatives of (force_z, moment_x, moment_y) alone along each perturbation. Where the system
-  /// is solved by CG (full film or half-Sommerfeld: A symmetric, these loads linear in the nodal
-  /// pressure, L_i(dp) = g_i . dp) by its adjoint: three solves A z_i = C^T g_i whatever the
-  /// number of directions, dL_i = z_i . b_k plus the direction's term at dp = 0 (asperity
-  /// contact); 3 Krylov solves instead of 6 for the coefficient set. Else from linearized_loads.
+  /// is solved by CG (full film or half-Sommerfeld: A symmetric to round-off, these loads linear
+  /// in the nodal pressure, L_i(dp) = g_i . dp) and there are more than three directions, by
+  /// its adjoint: three solves A z_i = C^T g_i, dL_i = z_i . b_k plus the direction's term at
+  /// dp = 0 (asperity contact); 3 Krylov solves instead of 6 for the coefficient set. Else from
+  /// linearized_loads.
   std::vector<std::array<double, 3>>
   linearized_generalized_forces(const std::vector<FilmPerturbation> &perturbations) const;
-  /// Whether linearized_generalized_forces takes the adjoint solves.
-  bool adjoint_applies() const;
 
 private:
+  /// Whether linearized_generalized_forces takes the adjoint solves for `n_directions`.
+  bool adjoint_applies(std::size_t n_directions) const;
   struct PointState;
   struct PointPerturbation;
 

@@ -28,6 +28,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
