@@ -8,6 +8,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -31,6 +32,14 @@ double perturbation_squeeze(const FilmPerturbation &p, const double r, const dou
   }
   return dh_t;
 }
+/// The weights of force_z, moment_x and moment_y in the pressure at x (doc/coefficients.md: F_z =
+/// int p dA, M_x = int p y dA, M_y = -int p x dA): one definition for the loads
+/// (add_pressure_loads) and the adjoint's load functionals (generalized_force_functionals).
+std::array<double, 3> generalized_force_weights(const dealii::Point<2> &x)
+{
+  return {{1.0, x[1], -x[0]}};
+}
+
 } // namespace
 
 nlohmann::json FilmLoads::to_json() const
@@ -372,9 +381,9 @@ void LoadIntegrator::add_pressure_loads(const PointState &x, const PointPerturba
   const double contact_p = perturbed ? f.dcontact_dh * d.dh : f.contact_pressure;
   const double load_p =
       (perturbed ? (clipped ? 0.0 : d.dp) : (clipped ? p_cav : x.p) - p_ref) + contact_p;
-  sum[0] += load_p * JxW;
-  sum[1] += load_p * Y * JxW;
-  sum[2] += -load_p * X * JxW;
+  const std::array<double, 3> weight = generalized_force_weights(x.x);
+  for (unsigned int i = 0; i < 3; ++i)
+    sum[i] += load_p * weight[i] * JxW;
   sum[3] += -load_p * (X * cos_psi + Y * sin_psi) * JxW;
   sum[4] += load_p * (Y * cos_psi - X * sin_psi) * JxW;
   sum[8] += JxW;
@@ -924,15 +933,15 @@ std::array<LoadIntegrator::VectorType, 3> LoadIntegrator::generalized_force_func
       {
         if (clip && p[q] < p_cav)
           continue; // half-Sommerfeld: the clipped pressure does not move (add_pressure_loads)
-        const Point<2> x = turned ? polar->quadrature_point(q) : fe_values.quadrature_point(q);
+        const std::array<double, 3> weight = generalized_force_weights(
+            turned ? polar->quadrature_point(q) : fe_values.quadrature_point(q));
         const double JxW = turned ? polar->JxW(q) : fe_values.JxW(q);
         for (unsigned int j = 0; j < n; ++j)
         {
           const double phi =
               (turned ? polar->shape_value(j, q) : fe_values.shape_value(j, q)) * JxW;
-          cell_g[0](j) += phi;
-          cell_g[1](j) += phi * x[1];
-          cell_g[2](j) += -phi * x[0];
+          for (unsigned int i = 0; i < 3; ++i)
+            cell_g[i](j) += phi * weight[i];
         }
       }
       cell->get_dof_indices(dofs);

@@ -91,8 +91,9 @@ struct AffineLoadSums
 /// Loads of a ReynoldsSolver's last solution, and their derivatives along film perturbations
 /// (ReynoldsSolver::linearized_loads). One integration routine for both, so that the
 /// linearisation differentiates exactly what the loads integrate; the adjoint path's load
-/// functionals (generalized_force_functionals) restate add_pressure_loads' force and moment
-/// weights, and tests/validation/film_multigrid.cc holds the two paths to the CG tolerance.
+/// functionals (generalized_force_functionals) take add_pressure_loads' points, force and moment
+/// weights and clip, and tests/validation/film_multigrid.cc holds the two paths to the CG
+/// tolerance.
 class LoadIntegrator
 {
 public:
