@@ -101,6 +101,15 @@ void FilmLinearSolver::clear()
   prepare_multigrid = nullptr;
 }
 
+void FilmLinearSolver::release_factorization()
+{
+  direct.clear();
+  amg.reset();
+  matrix = nullptr;
+  pending = false;
+  lagged = false;
+}
+
 void FilmLinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix_in,
                                const bool symmetric_in, const FilmSettings::LinearSolver choice,
                                const unsigned int degree_in, const double tolerance_in,
@@ -228,6 +237,8 @@ unsigned int FilmLinearSolver::krylov_solve(const VectorType &rhs, VectorType &x
 
 unsigned int FilmLinearSolver::solve(const VectorType &rhs, VectorType &x)
 {
+  if (!matrix)
+    throw std::logic_error("FilmLinearSolver: solve() without a prepared matrix");
   ++stats.solves;
   if (pending)
     build_preconditioner();

@@ -414,6 +414,35 @@ TEST(CavitationFE, JfoBandStartGivesTheGlobalRoundsSolution)
   expect_same_jfo_solution(l[0], l[1], tolerance, film.outer_radius);
 }
 
+TEST(CavitationFE, CoarseLevelsFreeTheirFactorisationsAndRunAgainAlike)
+{
+  // The JFO starts from the solution on the mesh twice as coarse (ReynoldsSolver::
+  // coarse_level_state), whose solver is kept for the next run on the mesh; its factorisation is
+  // freed once its solution is taken, before the finer level factorises. A second run on the same
+  // solver then analyses the coarse patterns again and must end on the same discrete solution:
+  // the loads to the Newton tolerance, the mass balance to 1e-8 (as above). The tilted Varney &
+  // Green seal at 33 024 dofs (MUMPS on the finest level, KLU below).
+  FilmThickness film;
+  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  const OperatingConditions conditions;
+  const double tolerance = 1e-10;
+  ReynoldsSolver solver(MPI_COMM_WORLD);
+  const FilmLoads first = converged_jfo(film, conditions, 64, 128, tolerance, solver);
+  const ReynoldsSolver *coarse = solver.coarse_level_solver();
+  ASSERT_NE(coarse, nullptr) << "the run did not start from the coarse level";
+  ASSERT_NE(coarse->coarse_level_solver(), nullptr) << "only one coarse level";
+  // factorised during the run, holding no factorisation after it, on every coarse level
+  for (const ReynoldsSolver *level = coarse; level; level = level->coarse_level_solver())
+  {
+    EXPECT_GT(level->linear_solver_statistics().statistics().factorizations, 0u);
+    EXPECT_STREQ(level->linear_solver_statistics().direct_package(), "");
+  }
+  EXPECT_STRNE(solver.linear_solver_statistics().direct_package(), ""); // the finest keeps its own
+  const FilmLoads second = converged_jfo(film, conditions, 64, 128, tolerance, solver);
+  EXPECT_EQ(solver.coarse_level_solver(), coarse); // the coarse level (and its mesh) reused
+  expect_same_jfo_solution(first, second, tolerance, film.outer_radius);
+}
+
 TEST(CavitationFE, JfoMeshConvergence)
 {
   // Three meshes, each twice as fine in r and theta; the observed order from successive

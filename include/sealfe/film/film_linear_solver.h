@@ -95,6 +95,10 @@ public:
                      dealii::TrilinosWrappers::MPI::Vector &x);
   /// Forget the factorisation (new mesh).
   void clear();
+  /// Free the factorisation (or AMG hierarchy) of the prepared matrix and keep the rest (the
+  /// mesh's multigrid, the statistics): a coarse level whose solution has been taken gives its
+  /// memory back before the finer level factorises. The next prepare() analyses the pattern again.
+  void release_factorization();
 
   Method method() const { return current_method; }
   const char *method_name() const;
