@@ -440,6 +440,8 @@ TEST(CavitationFE, CoarseLevelsFreeTheirFactorisationsAndRunAgainAlike)
   EXPECT_STRNE(solver.linear_solver_statistics().direct_package(), ""); // the finest keeps its own
   const FilmLoads second = converged_jfo(film, conditions, 64, 128, tolerance, solver);
   EXPECT_EQ(solver.coarse_level_solver(), coarse); // the coarse level (and its mesh) reused
+  for (const ReynoldsSolver *level = coarse; level; level = level->coarse_level_solver())
+    EXPECT_STREQ(level->linear_solver_statistics().direct_package(), ""); // freed again
   expect_same_jfo_solution(first, second, tolerance, film.outer_radius);
 }
 
