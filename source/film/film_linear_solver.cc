@@ -92,12 +92,8 @@ void FilmLinearSolver::set_multigrid(const FilmMultigrid *mg, std::function<void
 
 void FilmLinearSolver::clear()
 {
-  direct.clear();
-  pending = false;
-  amg.reset();
-  matrix = nullptr;
-  lagged = false;
-  multigrid = nullptr;
+  release_factorization();
+  multigrid = nullptr; // the mesh's hierarchy goes with the mesh
   prepare_multigrid = nullptr;
 }
 
