@@ -917,16 +917,16 @@ std::array<LoadIntegrator::VectorType, 3> LoadIntegrator::generalized_force_func
     if (cell->is_locally_owned())
     {
       const bool turned = polar && polar->reinit(cell);
-      if (turned)
+      if (!turned)
+        fe_values.reinit(cell);
+      // the pressure only decides which points half-Sommerfeld clips
+      if (clip && turned)
       {
         cell->get_dof_values(s.locally_relevant_solution, cell_p);
         polar->get_function_values(cell_p, p);
       }
-      else
-      {
-        fe_values.reinit(cell);
+      else if (clip)
         fe_values.get_function_values(s.locally_relevant_solution, p);
-      }
       for (auto &c : cell_g)
         c = 0;
       for (unsigned int q = 0; q < n_q; ++q)

@@ -85,7 +85,7 @@ public:
   /// solve each with the same factorisation (what the 6-direction coefficient set uses).
   std::vector<FilmLoads> linearized_loads(const std::vector<FilmPerturbation> &perturbations) const;
   /// Only the derivatives of (force_z, moment_x, moment_y) along each direction: where CG solves
-  /// the (symmetric) system, by three adjoint solves whatever the number of directions
+  /// the (symmetric) system and there are more than three directions, by three adjoint solves
   /// (LoadIntegrator::linearized_generalized_forces); else from linearized_loads.
   std::vector<std::array<double, 3>>
   linearized_generalized_forces(const std::vector<FilmPerturbation> &perturbations) const;
