@@ -86,6 +86,11 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
     coarse_solver = std::make_unique<ReynoldsSolver>(
         settings, whole_on_each_rank ? MPI_COMM_SELF : mpi_communicator);
   ReynoldsSolver &coarse = *coarse_solver;
+  // The ranks that each solve the coarse levels whole factorise their larger matrices together
+  // (SparseDirect::share_with: a separator splits each over the ranks), the levels below too;
+  // every rank then still holds the same whole solution, bit for bit
+  coarse.linear_system_solver.share_direct_with(
+      whole_on_each_rank ? mpi_communicator : linear_system_solver.direct_team());
   coarse.settings = settings;
   coarse.boundary_pressure = boundary_pressure;
   coarse.source = source;

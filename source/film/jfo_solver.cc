@@ -943,7 +943,8 @@ bool JFOSolver::polish()
     {
       ++band_rounds;
       TimerOutput::Scope timer_scope(s.timer, "jfo band rounds");
-      band_workspace_retries += solve_on_subset(s.system_matrix, band_dofs, newton_rhs, w);
+      band_workspace_retries += solve_on_subset(s.system_matrix, band_dofs, newton_rhs, w,
+                                                s.linear_system_solver.direct_team());
     }
     else
     {

@@ -1,5 +1,6 @@
 #include <sealfe/film/sparse_direct.h>
 #include <sealfe/numerics/gather.h>
+#include <sealfe/numerics/substructured_lu.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -26,6 +27,58 @@
 
 namespace sealfe
 {
+namespace
+{
+/// This rank's entries of A as global (row, column) indices plus `base` (1: MUMPS's), row by row
+/// in the order of the matrix's storage, in which values_in_storage_order() reads the values.
+void entries_in_storage_order(const Epetra_CrsMatrix &A, const int base, std::vector<int> &row,
+                              std::vector<int> &column)
+{
+  std::vector<int> column_index(A.NumMyCols());
+  for (int c = 0; c < A.NumMyCols(); ++c)
+    column_index[c] = static_cast<int>(A.ColMap().GID64(c)) + base;
+  row.clear();
+  column.clear();
+  row.reserve(A.NumMyNonzeros());
+  column.reserve(A.NumMyNonzeros());
+  for (int i = 0; i < A.NumMyRows(); ++i)
+  {
+    int entries;
+    int *columns;
+    if (A.Graph().ExtractMyRowView(i, entries, columns) != 0)
+      throw std::runtime_error("Reynolds solver: cannot read the matrix rows for MUMPS");
+    const int global_row = static_cast<int>(A.RowMap().GID64(i)) + base;
+    for (int k = 0; k < entries; ++k)
+    {
+      row.push_back(global_row);
+      column.push_back(column_index[columns[k]]);
+    }
+  }
+}
+
+/// The values of A in the order of entries_in_storage_order(), straight from the matrix's own
+/// array: deal.II's compress() leaves the rows in one (Epetra's optimised storage). Checks on
+/// every rank of `comm` first (collective) that the pattern is the one read then, with
+/// `entries` entries on this rank.
+double *values_in_storage_order(const Epetra_CrsMatrix &A, const std::size_t entries,
+                                const MPI_Comm comm)
+{
+  double *storage = nullptr;
+  int *offsets = nullptr, *indices = nullptr;
+  int pattern_kept = static_cast<std::size_t>(A.NumMyNonzeros()) == entries &&
+                     A.StorageOptimized() &&
+                     A.ExtractCrsDataPointers(offsets, indices, storage) == 0 &&
+                     offsets[A.NumMyRows()] == A.NumMyNonzeros();
+  int everywhere = 0;
+  const int ierr = MPI_Allreduce(&pattern_kept, &everywhere, 1, MPI_INT, MPI_MIN, comm);
+  AssertThrowMPI(ierr);
+  if (!everywhere)
+    throw std::logic_error("SparseDirect: the matrix pattern or storage changed since the "
+                           "analysis");
+  return storage;
+}
+} // namespace
+
 /// MUMPS driven directly through its C interface. Amesos_Mumps, used before, converted the matrix
 /// to triplets row by row through copies and two index look-ups per entry (0.8 s of a 1.9 s
 /// analysis at 1e6 unknowns), and on several ranks redistributed a copy of the matrix before
@@ -67,26 +120,9 @@ public:
   /// The analysis (ordering, elimination tree) of A's pattern. Collective.
   void analyse(const Epetra_CrsMatrix &A)
   {
-    // this rank's entries as (row, column) 1-based global indices, row by row in the order of the
-    // matrix's storage, in which the values are read at every factorisation
-    std::vector<int> column_index(A.NumMyCols());
-    for (int c = 0; c < A.NumMyCols(); ++c)
-      column_index[c] = static_cast<int>(A.ColMap().GID64(c)) + 1;
-    row.reserve(A.NumMyNonzeros());
-    column.reserve(A.NumMyNonzeros());
-    for (int i = 0; i < A.NumMyRows(); ++i)
-    {
-      int entries;
-      int *columns;
-      if (A.Graph().ExtractMyRowView(i, entries, columns) != 0)
-        throw std::runtime_error("Reynolds solver: cannot read the matrix rows for MUMPS");
-      const int global_row = static_cast<int>(A.RowMap().GID64(i)) + 1;
-      for (int k = 0; k < entries; ++k)
-      {
-        row.push_back(global_row);
-        column.push_back(column_index[columns[k]]);
-      }
-    }
+    // this rank's entries as (row, column) 1-based global indices, in the order in which the
+    // values are read at every factorisation
+    entries_in_storage_order(A, 1, row, column);
     id.n = static_cast<int>(A.NumGlobalRows64());
     // Several ranks: the whole matrix on the host (ICNTL(18) = 0), its structure gathered here
     // once and its values at every factorisation; MUMPS then sends the workers their parts (the
@@ -171,20 +207,9 @@ public:
   void factorize(const Epetra_CrsMatrix &A)
   {
     // MUMPS reads the values in this call only (no iterative refinement, ICNTL(10) = 0), from
-    // the matrix's own array: deal.II's compress() leaves the rows in one (Epetra's optimised
-    // storage), in the order the analysis read the indices in
-    double *storage = nullptr;
-    int *offsets = nullptr, *indices = nullptr;
-    int pattern_kept = static_cast<std::size_t>(A.NumMyNonzeros()) == row_entries &&
-                       A.StorageOptimized() &&
-                       A.ExtractCrsDataPointers(offsets, indices, storage) == 0 &&
-                       offsets[A.NumMyRows()] == A.NumMyNonzeros();
-    // (on every rank, before the collective call)
-    int everywhere = 0;
-    A.Comm().MinAll(&pattern_kept, &everywhere, 1);
-    if (!everywhere)
-      throw std::logic_error("SparseDirect: the matrix pattern or storage changed since the "
-                             "analysis");
+    // the matrix's own array, in the order the analysis read the indices in (checked on every
+    // rank before the collective call)
+    double *storage = values_in_storage_order(A, row_entries, comm);
     if (several_ranks)
     {
       // the values to the host, in the order of the structure gathered there
@@ -365,19 +390,133 @@ private:
   std::unique_ptr<Epetra_Import> to_host;
 };
 
+/// A factorisation that the ranks of a team share (numerics::SubstructuredLU). The matrix is
+/// either whole on every rank (MPI_COMM_SELF, the same on every rank of the team) or distributed
+/// by rows over the ranks of its communicator; then every rank gathers the whole pattern once and
+/// the values at every factorisation (one MPI_Allgatherv of ~8 bytes per entry, 0.13 GB at
+/// 1.05e6 Q2 dofs), the right-hand side at every solve, and keeps its own rows of the solution.
+class SparseDirect::Shared
+{
+public:
+  /// Collective over the team; `ready` false where SubstructuredLU refuses the split.
+  Shared(const Epetra_CrsMatrix &A, const MPI_Comm team)
+      : distributed(A.Comm().NumProc() > 1),
+        comm(distributed ? dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm() : team),
+        lu(comm)
+  {
+    const long long n_global = A.NumGlobalRows64();
+    if (n_global >= std::numeric_limits<int>::max())
+      throw std::runtime_error("Reynolds solver: the matrix is too large for MUMPS's indices");
+    n = static_cast<int>(n_global);
+    if (!distributed && !(A.RowMap().LinearMap() && A.RowMap().MinAllGID64() == 0))
+      throw std::logic_error("SparseDirect: one rank needs the rows in order from 0");
+    // this rank's entries by global (row, column), in the order in which the values are read at
+    // every factorisation
+    std::vector<int> row, column;
+    entries_in_storage_order(A, 0, row, column);
+    my_entries = row.size();
+    my_row_count = A.NumMyRows();
+    whole.resize(n);
+    if (distributed)
+    {
+      row = numerics::gather_on_every_rank(comm, row);
+      column = numerics::gather_on_every_rank(comm, column);
+      std::vector<int> my_rows(A.NumMyRows());
+      for (int i = 0; i < A.NumMyRows(); ++i)
+        my_rows[i] = static_cast<int>(A.RowMap().GID64(i));
+      row_of_gathered = numerics::gather_on_every_rank(comm, my_rows);
+      if (row_of_gathered.size() != std::size_t(n))
+        throw std::logic_error("SparseDirect: the ranks' rows do not make the matrix");
+    }
+    // the ranks' blocks: equal ranges of the global numbering (on the annulus meshes the
+    // ranges of p4est's partition, sectors of the annulus)
+    const int ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+    std::vector<long long> block_start(ranks + 1);
+    for (int r = 0; r <= ranks; ++r)
+      block_start[r] = (static_cast<long long>(n) * r) / ranks;
+    ready = lu.analyse(n, row, column, block_start);
+  }
+
+  /// Collective.
+  void factorize(const Epetra_CrsMatrix &A)
+  {
+    // (checked on every rank of the team: the matrix may be whole on each)
+    const double *storage = values_in_storage_order(A, my_entries, comm);
+    if (distributed)
+    {
+      const std::vector<double> mine(storage, storage + my_entries);
+      values = numerics::gather_on_every_rank(comm, mine);
+      lu.factorize(values.data());
+    }
+    else
+      lu.factorize(storage);
+  }
+
+  /// x = A^-1 b. Collective.
+  void solve(const Epetra_MultiVector &b, Epetra_MultiVector &x)
+  {
+    if (b.NumVectors() != 1 || x.NumVectors() != 1)
+      throw std::logic_error("SparseDirect::solve: one right-hand side");
+    if (!distributed)
+    {
+      std::copy(b[0], b[0] + n, whole.begin());
+      lu.solve(whole.data(), 1);
+      std::copy(whole.begin(), whole.end(), x[0]);
+      return;
+    }
+    // b's entries by the rows' order (deal.II's vectors share the matrix's row map)
+    if (!b.Map().SameAs(x.Map()) || b.MyLength() != static_cast<int>(my_row_count))
+      throw std::logic_error("SparseDirect::solve: b and x must have the matrix's rows");
+    const std::vector<double> mine(b[0], b[0] + b.MyLength());
+    const std::vector<double> gathered = numerics::gather_on_every_rank(comm, mine);
+    for (std::size_t k = 0; k < gathered.size(); ++k)
+      whole[row_of_gathered[k]] = gathered[k];
+    lu.solve(whole.data(), 1);
+    for (int i = 0; i < x.MyLength(); ++i)
+      x[0][i] = whole[x.Map().GID64(i)];
+  }
+
+  /// X (n x m, this rank's whole matrix) = A^-1 X. Collective.
+  void solve_block(double *X, const int m) { lu.solve(X, m); }
+
+  unsigned int workspace_retries() const { return lu.workspace_retries(); }
+
+  bool ready = false;
+
+private:
+  bool distributed;
+  MPI_Comm comm; // the team: the matrix's communicator, or the ranks that each hold it whole
+  numerics::SubstructuredLU lu;
+  int n = 0;
+  std::size_t my_entries = 0, my_row_count = 0;
+  std::vector<int> row_of_gathered; // distributed: every rank's rows in gathering order
+  std::vector<double> values, whole;
+};
+
 SparseDirect::SparseDirect() = default;
 SparseDirect::~SparseDirect() = default;
 
+void SparseDirect::share_with(const MPI_Comm team_in)
+{
+  if (team_in != team)
+    clear();
+  team = team_in;
+}
+
 unsigned int SparseDirect::workspace_retries() const
 {
-  return retried_workspace + (mumps ? mumps->workspace_retries : 0);
+  return retried_workspace + (mumps ? mumps->workspace_retries : 0) +
+         (shared ? shared->workspace_retries() : 0);
 }
 
 void SparseDirect::clear()
 {
   if (mumps)
     retried_workspace += mumps->workspace_retries;
+  if (shared)
+    retried_workspace += shared->workspace_retries();
   mumps.reset();
+  shared.reset();
   solver.reset();
   problem.reset();
   pattern_owner = nullptr;
@@ -400,7 +539,21 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     // 2D meshes (doc/performance.md "Direct solver"). AMD ordering: measured quicker than METIS
     // nested dissection and MUMPS's automatic choice at 2.6e5 and 1e6 unknowns.
     package = A.NumGlobalRows64() < multifrontal_limit ? "KLU" : "MUMPS";
-    if (package == std::string("MUMPS"))
+    // Several ranks on one matrix: shared by a separator where it is large enough to pay
+    const MPI_Comm sharing =
+        A.Comm().NumProc() > 1 ? dynamic_cast<const Epetra_MpiComm &>(A.Comm()).GetMpiComm() : team;
+    if (A.NumGlobalRows64() >= substructured_limit &&
+        dealii::Utilities::MPI::n_mpi_processes(sharing) > 1)
+    {
+      auto split = std::make_unique<Shared>(A, team);
+      if (split->ready)
+        shared = std::move(split);
+    }
+    if (shared)
+    {
+      // (analysed by its constructor)
+    }
+    else if (package == std::string("MUMPS"))
     {
       // kept only once analysed: a SparseDirect whose analysis failed holds no factorisation
       auto analysed = std::make_unique<Mumps>(A);
@@ -425,7 +578,12 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
   }
   else
     ++reused_symbolic;
-  if (mumps)
+  if (shared)
+  {
+    shared->factorize(A);
+    ++substructured_factorizations;
+  }
+  else if (mumps)
     mumps->factorize(A);
   else if (solver->NumericFactorization() != 0)
     throw std::runtime_error("Reynolds solver: KLU factorisation failed (singular matrix)");
@@ -434,6 +592,11 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
 void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
                          dealii::TrilinosWrappers::MPI::Vector &x)
 {
+  if (shared)
+  {
+    shared->solve(b.trilinos_vector(), x.trilinos_vector());
+    return;
+  }
   if (mumps)
   {
     mumps->solve(b.trilinos_vector(), x.trilinos_vector());
@@ -452,6 +615,11 @@ void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
   const int n = A.NumMyRows();
   if (A.Comm().NumProc() != 1 || X.size() != static_cast<std::size_t>(n) * m)
     throw std::logic_error("SparseDirect::solve_block: one rank, n x m values");
+  if (shared)
+  {
+    shared->solve_block(X.data(), m);
+    return;
+  }
   if (mumps)
   {
     mumps->solve_block(X.data(), m);
@@ -687,7 +855,7 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
 unsigned int solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                              const std::vector<bool> &subset,
                              const dealii::TrilinosWrappers::MPI::Vector &b,
-                             dealii::TrilinosWrappers::MPI::Vector &x)
+                             dealii::TrilinosWrappers::MPI::Vector &x, const MPI_Comm replicas)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
   const MPI_Comm comm = matrix.get_mpi_communicator();
@@ -757,6 +925,7 @@ unsigned int solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matri
   }
   sub.compress(dealii::VectorOperation::insert);
   SparseDirect lu;
+  lu.share_with(dealii::Utilities::MPI::n_mpi_processes(comm) > 1 ? comm : replicas);
   lu.factorize(sub);
   lu.solve(sub_b, sub_x);
   // every rank its own entries of x

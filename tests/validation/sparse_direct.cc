@@ -8,6 +8,7 @@
 // for KLU and MUMPS; a singular change is refused, and so is an answer above the residual bound.
 #include <sealfe/film/sparse_direct.h>
 #include <sealfe/numerics/gather.h>
+#include <sealfe/numerics/substructured_lu.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -648,8 +649,10 @@ TEST(SparseDirect, BandSolveOnSeveralRanksIsTheSerialOne)
 // stale one, gives O(1) errors.
 namespace
 {
-/// The test below with the rows on the first `ranks_with_rows` ranks (0: every rank).
-void check_refactorisations_on_several_ranks(const unsigned int ranks_with_rows)
+/// The test below with the rows on the first `ranks_with_rows` ranks (0: every rank); with
+/// `substructured` the ranks share the factorisation by a separator (SparseDirect::Shared).
+void check_refactorisations_on_several_ranks(const unsigned int ranks_with_rows,
+                                             const bool substructured = false)
 {
   const MPI_Comm comm = MPI_COMM_WORLD;
   const unsigned int m = 150, N = m * m; // above SparseDirect::multifrontal_limit: MUMPS
@@ -667,6 +670,9 @@ void check_refactorisations_on_several_ranks(const unsigned int ranks_with_rows)
   }
   b.compress(VectorOperation::insert);
   const double u = std::numeric_limits<double>::epsilon() / 2;
+  const long long limit = SparseDirect::substructured_limit;
+  SparseDirect::substructured_limit =
+      substructured ? SparseDirect::multifrontal_limit : std::numeric_limits<long long>::max();
   SparseDirect lu;
   for (const double c : {5.0, 0.5, 40.0})
   {
@@ -674,6 +680,7 @@ void check_refactorisations_on_several_ranks(const unsigned int ranks_with_rows)
     serial.c = c;
     serial.set_rows(A, owned);
     lu.factorize(A);
+    EXPECT_EQ(lu.substructured(), substructured && Utilities::MPI::n_mpi_processes(comm) > 1);
     lu.solve(b, x);
     A.vmult(r, x);
     r -= b;
@@ -705,9 +712,84 @@ void check_refactorisations_on_several_ranks(const unsigned int ranks_with_rows)
     EXPECT_LE(difference, bound);
     EXPECT_GT(bound, 0.0);
   }
+  SparseDirect::substructured_limit = limit;
   EXPECT_EQ(lu.numeric_only(), 2u); // the 2nd and 3rd kept the analysis
 }
 } // namespace
+
+// The same factorisations shared by the ranks over a separator (numerics::SubstructuredLU): each
+// rank factorises its block's interior with the separator as MUMPS's Schur complement, and every
+// rank the dense complement; the same bounds hold (exact algebra, backward-stable parts).
+TEST(SparseDirect, SubstructuredRefactorisationOnSeveralRanksSolvesEachNewMatrix)
+{
+  check_refactorisations_on_several_ranks(0, true);
+}
+
+TEST(SparseDirect, SubstructuredOnSeveralRanksWithARankWithoutRows)
+{
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  if (n_ranks < 2)
+    GTEST_SKIP() << "needs two ranks or more (ctest sparse_direct_band_on_{2,3}_ranks)";
+  check_refactorisations_on_several_ranks(n_ranks - 1, true);
+}
+
+// A matrix that every rank holds whole (the coarse levels and band solves of several ranks),
+// factorised by the ranks together (SparseDirect::share_with): every rank gets the same bits, the
+// backward error of a backward-stable solve, and a block solve of three columns that agrees with
+// the single solves.
+TEST(SparseDirect, SharedWholeMatrixOnSeveralRanksIsOneAnswer)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const unsigned int m = 150, N = m * m;
+  GridMatrix whole(m);
+  const long long limit = SparseDirect::substructured_limit;
+  SparseDirect::substructured_limit = SparseDirect::multifrontal_limit;
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  SparseDirect lu;
+  lu.share_with(comm);
+  const IndexSet all = complete_index_set(N);
+  TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
+  std::vector<double> b_all(N);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = b_all[i] = std::cos(0.05 * i) + 0.1 * std::sin(1.3 * i);
+  for (const double c : {5.0, 40.0})
+  {
+    SCOPED_TRACE("c = " + std::to_string(c));
+    whole.c = c;
+    whole.set_rows(whole.A, all);
+    lu.factorize(whole.A);
+    EXPECT_EQ(lu.substructured(), Utilities::MPI::n_mpi_processes(comm) > 1);
+    lu.solve(b, x);
+    std::vector<double> y(N), low(N), high(N);
+    for (unsigned int i = 0; i < N; ++i)
+      y[i] = x[i];
+    EXPECT_LE(backward_error(whole.A, y, b_all), 128 * u);
+    MPI_Allreduce(y.data(), low.data(), N, MPI_DOUBLE, MPI_MIN, comm);
+    MPI_Allreduce(y.data(), high.data(), N, MPI_DOUBLE, MPI_MAX, comm);
+    EXPECT_EQ(low, high) << "the ranks' solutions differ";
+    // three columns at once: b, 2 b and a unit column; each the single solve's to round-off
+    std::vector<double> X(3 * N, 0.0);
+    for (unsigned int i = 0; i < N; ++i)
+    {
+      X[i] = b_all[i];
+      X[N + i] = 2 * b_all[i];
+    }
+    X[2 * N + N / 2] = 1;
+    lu.solve_block(X, 3);
+    double difference = 0, size = 0;
+    for (unsigned int i = 0; i < N; ++i)
+    {
+      difference = std::max({difference, std::abs(X[i] - y[i]), std::abs(X[N + i] - 2 * y[i])});
+      size = std::max(size, std::abs(y[i]));
+    }
+    EXPECT_LE(difference, 1e3 * u * size);
+    const std::vector<double> unit(X.begin() + 2 * N, X.end());
+    std::vector<double> e(N, 0.0);
+    e[N / 2] = 1;
+    EXPECT_LE(backward_error(whole.A, unit, e), 128 * u);
+  }
+  SparseDirect::substructured_limit = limit;
+}
 
 TEST(SparseDirect, RefactorisationOnSeveralRanksSolvesEachNewMatrix)
 {
@@ -722,4 +804,100 @@ TEST(SparseDirect, RefactorisationOnSeveralRanksWithARankWithoutRows)
   if (n_ranks < 2)
     GTEST_SKIP() << "needs two ranks or more (ctest sparse_direct_band_on_{2,3}_ranks)";
   check_refactorisations_on_several_ranks(n_ranks - 1);
+}
+
+// The split of numerics::SubstructuredLU on the pattern of Q2 elements on an nx x ny grid of
+// cells, nodes numbered row by row. Where a block boundary falls between the middle node row of a
+// row of cells and its top edge, the unknowns of the lower block coupled to the upper one are two
+// node rows (the cells' bottom edge and their middle row); the middle row touches the upper
+// interior only, so the separator thins to the one row of cell-edge nodes that separates a Q2
+// mesh: 2 nx + 1 unknowns per block boundary (the boundaries kept where given). With the
+// boundaries free to move (the default), no worse than the two rows, and within a few nodes of
+// the one row; the solve is checked against the matrix either way.
+namespace
+{
+struct QuadraticGrid
+{
+  int nodes_x, n;
+  std::vector<int> row, column;
+  std::vector<double> values;
+  QuadraticGrid(const int nx, const int ny) : nodes_x(2 * nx + 1), n(nodes_x * (2 * ny + 1))
+  {
+    // every node coupled to the nodes of the cells it belongs to
+    std::vector<std::vector<int>> coupled(n);
+    for (int cy = 0; cy < ny; ++cy)
+      for (int cx = 0; cx < nx; ++cx)
+        for (int a = 0; a < 9; ++a)
+          for (int b = 0; b < 9; ++b)
+            coupled[(2 * cy + a / 3) * nodes_x + 2 * cx + a % 3].push_back(
+                (2 * cy + b / 3) * nodes_x + 2 * cx + b % 3);
+    for (int i = 0; i < n; ++i)
+    {
+      std::sort(coupled[i].begin(), coupled[i].end());
+      coupled[i].erase(std::unique(coupled[i].begin(), coupled[i].end()), coupled[i].end());
+      for (const int j : coupled[i])
+      {
+        row.push_back(i);
+        column.push_back(j);
+        // strictly diagonally dominant, nonsymmetric
+        values.push_back(i == j ? 30.0 : -0.5 - 0.3 * std::sin(0.7 * i + 0.2 * j));
+      }
+    }
+  }
+  /// |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf) of the solve of numerics::SubstructuredLU
+  double solve_backward_error(numerics::SubstructuredLU &lu) const
+  {
+    lu.factorize(values.data());
+    std::vector<double> b(n), x(n);
+    for (int i = 0; i < n; ++i)
+      b[i] = x[i] = std::cos(0.01 * i);
+    lu.solve(x.data(), 1);
+    std::vector<double> r(b), row_sum(n, 0.0);
+    for (std::size_t e = 0; e < values.size(); ++e)
+    {
+      r[row[e]] -= values[e] * x[column[e]];
+      row_sum[row[e]] += std::abs(values[e]);
+    }
+    const auto max_abs = [](const std::vector<double> &v)
+    {
+      double m = 0;
+      for (const double value : v)
+        m = std::max(m, std::abs(value));
+      return m;
+    };
+    return max_abs(r) / (max_abs(row_sum) * max_abs(x) + max_abs(b));
+  }
+};
+} // namespace
+
+TEST(SubstructuredLU, QuadraticElementsSeparatedByOneEdgeRowOnSeveralRanks)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const int ranks = Utilities::MPI::n_mpi_processes(comm);
+  if (ranks < 2)
+    GTEST_SKIP() << "needs two ranks or more (ctest sparse_direct_band_on_{2,3}_ranks)";
+  const QuadraticGrid grid(40, 30 * ranks);
+  // block boundaries at node row 60 r: just above the middle row 60 r - 1 of cell row 30 r - 1
+  std::vector<long long> block_start(ranks + 1, grid.n);
+  block_start[0] = 0;
+  for (int r = 1; r < ranks; ++r)
+    block_start[r] = static_cast<long long>(60 * r) * grid.nodes_x;
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  const std::size_t boundaries = ranks - 1;
+  for (const bool move_cuts : {false, true})
+  {
+    SCOPED_TRACE(move_cuts ? "boundaries moved" : "boundaries where given");
+    numerics::SubstructuredLU::move_cuts = move_cuts;
+    numerics::SubstructuredLU lu(comm);
+    ASSERT_TRUE(lu.analyse(grid.n, grid.row, grid.column, block_start));
+    if (move_cuts)
+    {
+      EXPECT_GE(lu.separator_size(), boundaries * grid.nodes_x); // one node per column at least
+      EXPECT_LE(lu.separator_size(), boundaries * (grid.nodes_x + 4));
+    }
+    else
+      EXPECT_EQ(lu.separator_size(), boundaries * grid.nodes_x);
+    EXPECT_LE(grid.solve_backward_error(lu), 128 * u);
+  }
+  numerics::SubstructuredLU::move_cuts = true;
 }

@@ -93,6 +93,10 @@ public:
   /// std::runtime_error if the iteration does not converge.
   unsigned int solve(const dealii::TrilinosWrappers::MPI::Vector &rhs,
                      dealii::TrilinosWrappers::MPI::Vector &x);
+  /// The ranks that each hold this solver's matrices whole and factorise them together
+  /// (SparseDirect::share_with): the coarse mesh-sequencing levels of several ranks.
+  void share_direct_with(MPI_Comm team) { direct.share_with(team); }
+  MPI_Comm direct_team() const { return direct.team_of_replicas(); }
   /// Forget the factorisation (new mesh).
   void clear();
   /// Free the factorisation (or AMG hierarchy) of the prepared matrix and keep the rest (the

@@ -6,6 +6,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <mpi.h>
+
 #include <memory>
 #include <utility>
 #include <vector>
@@ -29,8 +31,19 @@ public:
   /// first factorisation of a pattern; doubled up to three times where it falls short (tests).
   static inline int initial_workspace_margin = 20;
 
+  /// From this many unknowns on, a matrix that several ranks factorise together is split over
+  /// them (numerics::SubstructuredLU) instead of factorised whole by MUMPS's own parallel
+  /// factorisation, which gained 1.0-1.3x on two ranks (doc/performance.md "Session 27").
+  static inline long long substructured_limit = 50000;
+
   SparseDirect();
   ~SparseDirect();
+  /// Every rank of `team` factorises the same matrix, each holding it whole on MPI_COMM_SELF (the
+  /// band solves and the coarse mesh-sequencing levels of several ranks): from
+  /// substructured_limit unknowns on, the ranks share the work (numerics::SubstructuredLU), so
+  /// factorize() and the solves are collective over `team`. MPI_COMM_SELF (the default): alone.
+  void share_with(MPI_Comm team);
+  MPI_Comm team_of_replicas() const { return team; }
   /// Factorise `matrix` (kept by reference until the next factorize() or clear()).
   void factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix);
   /// x = A^-1 b with the last factorisation.
@@ -48,7 +61,13 @@ public:
   bool inverse_entries(const std::vector<unsigned int> &rows,
                        const std::vector<unsigned int> &columns, std::vector<double> &values);
   void clear();
-  bool initialized() const { return solver || mumps; }
+  bool initialized() const { return solver || mumps || shared; }
+  /// The last factorisation is shared over several ranks (numerics::SubstructuredLU); its
+  /// package is MUMPS.
+  bool substructured() const { return shared != nullptr; }
+  /// Factorisations shared over several ranks by all SparseDirect objects of this process
+  /// (tests: which levels took the shared path).
+  static inline unsigned int substructured_factorizations = 0;
   /// Factorisations that reused the symbolic analysis of an earlier one.
   unsigned int numeric_only() const { return reused_symbolic; }
   /// MUMPS factorisations repeated with twice the workspace margin (its estimate from the
@@ -61,6 +80,10 @@ private:
   /// MUMPS driven directly (sparse_direct.cc)
   class Mumps;
   std::unique_ptr<Mumps> mumps;
+  /// The factorisation shared over several ranks (sparse_direct.cc)
+  class Shared;
+  std::unique_ptr<Shared> shared;
+  MPI_Comm team = MPI_COMM_SELF;
   /// KLU through Amesos
   std::unique_ptr<Epetra_LinearProblem> problem;
   std::unique_ptr<Amesos_BaseSolver> solver;
@@ -109,11 +132,15 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
 /// x_S = A_SS^-1 b_S on the dofs S with `subset` set (the others of x untouched): a sparse
 /// factorisation of the principal submatrix (KLU or MUMPS by its size). On several ranks
 /// collective (`subset` the same on every rank): every rank gathers A_SS and b_S, solves them
-/// and sets its own entries of x. Returns the factorisation's MUMPS workspace retries
-/// (SparseDirect::workspace_retries; 0 for KLU).
+/// and sets its own entries of x; from SparseDirect::substructured_limit unknowns on they share
+/// the factorisation (SparseDirect::share_with). Returns the factorisation's MUMPS workspace
+/// retries (SparseDirect::workspace_retries; 0 for KLU).
+/// `replicas`: where the matrix is whole on this rank (MPI_COMM_SELF), the ranks that each hold
+/// it whole and solve the same subset (SparseDirect::share_with).
 unsigned int solve_on_subset(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                              const std::vector<bool> &subset,
                              const dealii::TrilinosWrappers::MPI::Vector &b,
-                             dealii::TrilinosWrappers::MPI::Vector &x);
+                             dealii::TrilinosWrappers::MPI::Vector &x,
+                             MPI_Comm replicas = MPI_COMM_SELF);
 
 } // namespace sealfe
