@@ -32,6 +32,7 @@ FilmLinearSolver::Statistics &FilmLinearSolver::Statistics::operator+=(const Sta
   max_krylov_iterations = std::max(max_krylov_iterations, other.max_krylov_iterations);
   reused_preconditioners += other.reused_preconditioners;
   workspace_retries += other.workspace_retries;
+  substructured_factorizations += other.substructured_factorizations;
   return *this;
 }
 
@@ -157,6 +158,7 @@ void FilmLinearSolver::build_preconditioner()
     direct.factorize(*matrix);
     stats.symbolic_reuses += direct.numeric_only() - before;
     stats.workspace_retries += direct.workspace_retries() - retries_before;
+    stats.substructured_factorizations += direct.substructured();
     return;
   }
   direct.clear();

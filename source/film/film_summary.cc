@@ -263,7 +263,8 @@ nlohmann::json linear_solver_summary(const FilmLinearSolver::Statistics &statist
           {"max_krylov_iterations", statistics.max_krylov_iterations},
           {"symbolic_reuses", statistics.symbolic_reuses},
           {"reused_preconditioners", statistics.reused_preconditioners},
-          {"workspace_retries", statistics.workspace_retries}};
+          {"workspace_retries", statistics.workspace_retries},
+          {"substructured_factorizations", statistics.substructured_factorizations}};
 }
 
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,

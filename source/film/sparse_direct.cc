@@ -427,6 +427,17 @@ public:
       row_of_gathered = numerics::gather_on_every_rank(comm, my_rows);
       if (row_of_gathered.size() != std::size_t(n))
         throw std::logic_error("SparseDirect: the ranks' rows do not make the matrix");
+      // every rank's count and offset of entries, for the values' gather at every factorisation
+      // into one buffer kept with the pattern (a new one each time was fresh memory: page faults)
+      const int ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+      const int mine = static_cast<int>(my_entries);
+      value_counts.resize(ranks);
+      value_offsets.assign(ranks + 1, 0);
+      const int ierr = MPI_Allgather(&mine, 1, MPI_INT, value_counts.data(), 1, MPI_INT, comm);
+      AssertThrowMPI(ierr);
+      for (int r = 0; r < ranks; ++r)
+        value_offsets[r + 1] = value_offsets[r] + value_counts[r];
+      values.resize(row.size());
     }
     // the ranks' blocks: equal ranges of the global numbering (on the annulus meshes the
     // ranges of p4est's partition, sectors of the annulus)
@@ -444,8 +455,10 @@ public:
     const double *storage = values_in_storage_order(A, my_entries, comm);
     if (distributed)
     {
-      const std::vector<double> mine(storage, storage + my_entries);
-      values = numerics::gather_on_every_rank(comm, mine);
+      const int ierr =
+          MPI_Allgatherv(storage, static_cast<int>(my_entries), MPI_DOUBLE, values.data(),
+                         value_counts.data(), value_offsets.data(), MPI_DOUBLE, comm);
+      AssertThrowMPI(ierr);
       lu.factorize(values.data());
     }
     else
@@ -489,8 +502,9 @@ private:
   numerics::SubstructuredLU lu;
   int n = 0;
   std::size_t my_entries = 0, my_row_count = 0;
-  std::vector<int> row_of_gathered; // distributed: every rank's rows in gathering order
-  std::vector<double> values, whole;
+  std::vector<int> row_of_gathered;  // distributed: every rank's rows in gathering order
+  std::vector<double> values, whole; // distributed: every rank's entries; the whole vector
+  std::vector<int> value_counts, value_offsets; // distributed: each rank's entries in `values`
 };
 
 SparseDirect::SparseDirect() = default;
@@ -529,8 +543,12 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
   // The symbolic analysis (BTF, AMD ordering) depends on the pattern only: a Newton Jacobian
   // assembled into the same matrix object has the same one.
-  const bool same_pattern =
+  bool same_pattern =
       initialized() && pattern_owner == &A && pattern_entries == A.NumGlobalNonzeros64();
+  // (a team whose ranks each hold their own matrix object decides together: a new analysis and a
+  // numeric factorisation are different sequences of collective calls)
+  if (A.Comm().NumProc() == 1 && dealii::Utilities::MPI::n_mpi_processes(team) > 1)
+    same_pattern = dealii::Utilities::MPI::min(same_pattern ? 1 : 0, team) == 1;
   if (!same_pattern)
   {
     clear();
@@ -547,7 +565,10 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     {
       auto split = std::make_unique<Shared>(A, team);
       if (split->ready)
+      {
         shared = std::move(split);
+        package = "MUMPS, substructured"; // (each rank's part: MUMPS)
+      }
     }
     if (shared)
     {
@@ -580,10 +601,26 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     ++reused_symbolic;
   if (shared)
   {
-    shared->factorize(A);
-    ++substructured_factorizations;
+    try
+    {
+      shared->factorize(A);
+      return;
+    }
+    catch (const std::runtime_error &failure)
+    {
+      // (thrown on every rank of the team together, SubstructuredLU's agreement): a part or the
+      // complement is singular where the whole matrix need not be, whose factorisation pivots
+      // across the separator. The whole matrix then, MUMPS's parallel factorisation or each
+      // rank's own
+      retried_workspace += shared->workspace_retries();
+      shared.reset();
+      package = "MUMPS";
+      auto analysed = std::make_unique<Mumps>(A);
+      analysed->analyse(A);
+      mumps = std::move(analysed);
+    }
   }
-  else if (mumps)
+  if (mumps)
     mumps->factorize(A);
   else if (solver->NumericFactorization() != 0)
     throw std::runtime_error("Reynolds solver: KLU factorisation failed (singular matrix)");

@@ -42,7 +42,7 @@ public:
   /// diagonal, so that every Schur unknown has an entry on every rank)
   std::vector<int> local_row, local_column;
   std::vector<long long> entry_of;
-  std::vector<double> local_values, schur_term;
+  std::vector<double> local_values, schur_term, complement_sum;
   std::vector<int> schur_list;
   dealii::LAPACKFullMatrix<double> complement;
   DMUMPS_STRUC_C id{};
@@ -59,8 +59,18 @@ public:
   }
 };
 
-SubstructuredLU::SubstructuredLU(const MPI_Comm team) : team(team) {}
-SubstructuredLU::~SubstructuredLU() = default;
+SubstructuredLU::SubstructuredLU(const MPI_Comm team_in)
+{
+  // its own communicator: its collective calls never pair with the caller's
+  const int ierr = MPI_Comm_dup(team_in, &team);
+  AssertThrowMPI(ierr);
+}
+
+SubstructuredLU::~SubstructuredLU()
+{
+  part.reset();
+  MPI_Comm_free(&team);
+}
 
 std::size_t SubstructuredLU::separator_size() const
 {
@@ -86,6 +96,10 @@ void agree_on(const int status, const int detail, const MPI_Comm team, const cha
   if (status == -10)
     throw std::runtime_error(std::string("Reynolds solver: MUMPS ") + what +
                              " failed (singular matrix) in a substructured factorisation");
+  if (status == -1)
+    throw std::runtime_error(std::string("Reynolds solver: the ") + what +
+                             " of a substructured factorisation failed on this rank (out of "
+                             "memory?)");
   if (status < 0)
     throw std::runtime_error(
         std::string("Reynolds solver: MUMPS ") + what +
@@ -95,19 +109,31 @@ void agree_on(const int status, const int detail, const MPI_Comm team, const cha
                            " failed on another rank of a substructured factorisation");
 }
 
-/// values summed over the team, the same bits on every rank (a reduction on the first rank and a
-/// broadcast: an all-reduce may add in different orders on different ranks)
-void sum_on_every_rank(std::vector<double> &values, const MPI_Comm team)
+/// values summed over the team on its first rank (the others' copies untouched)
+void sum_on_first_rank(std::vector<double> &values, const MPI_Comm team)
 {
   const int rank = dealii::Utilities::MPI::this_mpi_process(team);
   if (values.size() > std::size_t(std::numeric_limits<int>::max()))
     throw std::runtime_error("SubstructuredLU: separator too large for MPI counts");
-  const int count = static_cast<int>(values.size());
-  int ierr = MPI_Reduce(rank == 0 ? MPI_IN_PLACE : values.data(), values.data(), count, MPI_DOUBLE,
-                        MPI_SUM, 0, team);
+  const int ierr =
+      MPI_Reduce(rank == 0 ? MPI_IN_PLACE : values.data(), rank == 0 ? values.data() : nullptr,
+                 static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, 0, team);
   AssertThrowMPI(ierr);
-  ierr = MPI_Bcast(values.data(), count, MPI_DOUBLE, 0, team);
-  AssertThrowMPI(ierr);
+}
+
+/// `work()` on this rank alone, its status (a MUMPS INFOG(1), or -1 for an exception) for
+/// agree_on, so that a failure on one rank does not leave the others in a collective call
+template <class Work>
+int run_locally(Work &&work)
+{
+  try
+  {
+    return work();
+  }
+  catch (...)
+  {
+    return -1;
+  }
 }
 } // namespace
 
@@ -361,6 +387,8 @@ SubstructuredLU::split(const int n, const std::vector<int> &row, const std::vect
   id.listvar_schur = p->schur_list.data();
   id.schur = p->schur_term.data();
   id.schur_lld = static_cast<MUMPS_INT>(m);
+  id.nprow = id.npcol = 1; // (the complement on this one process)
+  id.mblock = id.nblock = 64;
   id.job = 1;
   dmumps_c(&id);
   agree_on(id.infog[0], id.infog[1], team, "analysis");
@@ -372,43 +400,62 @@ void SubstructuredLU::factorize(const double *values)
   if (!part)
     throw std::logic_error("SubstructuredLU::factorize: no pattern analysed");
   Part &p = *part;
-  for (std::size_t k = 0; k < p.entry_of.size(); ++k)
-    p.local_values[k] = p.entry_of[k] >= 0 ? values[p.entry_of[k]] : 0.0;
   DMUMPS_STRUC_C &id = p.id;
-  id.a = p.local_values.data();
-  // a workspace estimate that falls short (numerical pivoting) is retried with twice the margin,
-  // three times, as in SparseDirect
-  for (int attempt = 0;; ++attempt)
-  {
-    id.job = 2;
-    dmumps_c(&id);
-    if (!(id.infog[0] == -8 || id.infog[0] == -9) || attempt == 3)
-      break;
-    id.icntl[13] *= 2;
-    ++p.retries;
-  }
-  agree_on(id.infog[0], id.infog[1], team, "factorisation");
-  // the complement: A_SS (in the first rank's term) less every rank's A_Sr A_rr^-1 A_rS
+  // this rank's part (a failure here, MUMPS's or an exception, is agreed on below)
+  const int local = run_locally(
+      [&]()
+      {
+        for (std::size_t k = 0; k < p.entry_of.size(); ++k)
+          p.local_values[k] = p.entry_of[k] >= 0 ? values[p.entry_of[k]] : 0.0;
+        id.a = p.local_values.data();
+        // a workspace estimate that falls short (numerical pivoting) is retried with twice the
+        // margin, three times, as in SparseDirect
+        for (int attempt = 0;; ++attempt)
+        {
+          id.job = 2;
+          dmumps_c(&id);
+          if (!(id.infog[0] == -8 || id.infog[0] == -9) || attempt == 3)
+            break;
+          id.icntl[13] *= 2;
+          ++p.retries;
+        }
+        return id.infog[0];
+      });
+  agree_on(local, id.infog[1], team, "factorisation");
+  // The complement, A_SS (in the first rank's term) less every rank's A_Sr A_rr^-1 A_rS, summed
+  // and factorised on the first rank only, which also solves with it: one copy, so that every
+  // rank gets the same bits whatever its LAPACK (the others would only wait for it)
   const std::size_t s = p.separator.size(), m = p.my_separator.size();
-  std::vector<double> complement(s * s, 0.0);
-  for (std::size_t c = 0; c < m; ++c)
-    for (std::size_t r = 0; r < m; ++r)
-      complement[p.my_separator[c] * s + p.my_separator[r]] += p.schur_term[c * m + r];
-  sum_on_every_rank(complement, team);
-  p.complement.reinit(s, s);
-  for (std::size_t c = 0; c < s; ++c)
-    for (std::size_t r = 0; r < s; ++r)
-      p.complement(r, c) = complement[c * s + r];
-  // the same matrix on every rank: all of them succeed or throw here together
-  try
-  {
-    p.complement.compute_lu_factorization();
-  }
-  catch (...)
-  {
+  int status = run_locally(
+      [&]()
+      {
+        // (kept with the part: fresh memory at every factorisation costs page faults)
+        std::vector<double> &complement = p.complement_sum;
+        complement.assign(s * s, 0.0);
+        for (std::size_t c = 0; c < m; ++c)
+          for (std::size_t r = 0; r < m; ++r)
+            complement[p.my_separator[c] * s + p.my_separator[r]] += p.schur_term[c * m + r];
+        return 0;
+      });
+  agree_on(status, 0, team, "Schur complement");
+  sum_on_first_rank(p.complement_sum, team);
+  if (p.rank == 0)
+    status = run_locally(
+        [&]()
+        {
+          p.complement.reinit(s, s);
+          for (std::size_t c = 0; c < s; ++c)
+            for (std::size_t r = 0; r < s; ++r)
+              p.complement(r, c) = p.complement_sum[c * s + r];
+          // (a zero pivot throws in deal.II)
+          p.complement.compute_lu_factorization();
+          return 0;
+        });
+  int ierr = MPI_Bcast(&status, 1, MPI_INT, 0, team);
+  AssertThrowMPI(ierr);
+  if (status < 0)
     throw std::runtime_error("Reynolds solver: the Schur complement of a substructured "
                              "factorisation is singular");
-  }
 }
 
 void SubstructuredLU::solve(double *X, const int m)
@@ -418,59 +465,108 @@ void SubstructuredLU::solve(double *X, const int m)
   Part &p = *part;
   const std::size_t n = p.n, s = p.separator.size(), ms = p.my_separator.size(),
                     n_local = p.n_local;
-  // condensation on this rank: its interior's right-hand sides, zero on its separator unknowns
-  std::vector<double> rhs(n_local * m, 0.0), reduced(ms * m, 0.0);
-  const int *mine = p.interiors.data() + p.interior_offsets[p.rank];
-  for (int c = 0; c < m; ++c)
-    for (int k = 0; k < p.n_interior; ++k)
-      rhs[c * n_local + k] = X[c * n + mine[k]];
   DMUMPS_STRUC_C &id = p.id;
-  id.nrhs = m;
-  id.lrhs = static_cast<MUMPS_INT>(n_local);
-  id.rhs = rhs.data();
-  id.redrhs = reduced.data();
-  id.lredrhs = static_cast<MUMPS_INT>(std::max<std::size_t>(ms, 1));
-  id.icntl[25] = 1;
-  id.job = 3;
-  dmumps_c(&id);
-  agree_on(id.infog[0], id.infog[1], team, "condensation");
-  // the separator's right-hand side b_S - sum_r A_Sr A_rr^-1 b_r, and its solution
-  std::vector<double> separator_rhs(s * m, 0.0);
-  for (int c = 0; c < m; ++c)
-    for (std::size_t k = 0; k < ms; ++k)
-      separator_rhs[c * s + p.my_separator[k]] += reduced[c * ms + k];
-  sum_on_every_rank(separator_rhs, team);
-  dealii::LAPACKFullMatrix<double> x_separator(s, m);
-  for (int c = 0; c < m; ++c)
-    for (std::size_t k = 0; k < s; ++k)
-      x_separator(k, c) = separator_rhs[c * s + k] + X[c * n + p.separator[k]];
-  p.complement.solve(x_separator);
-  // expansion: x_r = A_rr^-1 (b_r - A_rS x_S), from the condensation's state in `rhs`
-  for (int c = 0; c < m; ++c)
-    for (std::size_t k = 0; k < ms; ++k)
-      reduced[c * ms + k] = x_separator(p.my_separator[k], c);
-  id.icntl[25] = 2;
-  id.job = 3;
-  dmumps_c(&id);
-  id.icntl[25] = 0;
-  agree_on(id.infog[0], id.infog[1], team, "expansion");
-  // every rank's interior values to every rank
-  std::vector<int> counts(p.ranks), offsets(p.ranks);
-  for (int r = 0; r < p.ranks; ++r)
+  // MUMPS's solve settings back to a plain solve after each phase, and no pointers left to the
+  // buffers of this call, whatever happens
+  struct PlainSolveAfterwards
   {
-    const long long count = (long long)(p.interior_offsets[r + 1] - p.interior_offsets[r]) * m,
-                    offset = (long long)p.interior_offsets[r] * m;
-    if (offset + count > std::numeric_limits<int>::max())
-      throw std::runtime_error("SubstructuredLU: too many right-hand sides for MPI counts");
-    counts[r] = static_cast<int>(count);
-    offsets[r] = static_cast<int>(offset);
-  }
-  std::vector<double> my_interior(std::size_t(p.n_interior) * m), all((n - s) * m);
-  for (int c = 0; c < m; ++c)
-    std::copy(rhs.begin() + c * n_local, rhs.begin() + c * n_local + p.n_interior,
-              my_interior.begin() + std::size_t(c) * p.n_interior);
-  const int ierr = MPI_Allgatherv(my_interior.data(), counts[p.rank], MPI_DOUBLE, all.data(),
-                                  counts.data(), offsets.data(), MPI_DOUBLE, team);
+    DMUMPS_STRUC_C &id;
+    ~PlainSolveAfterwards()
+    {
+      id.icntl[25] = 0;
+      id.nrhs = 1;
+      id.rhs = id.redrhs = nullptr;
+    }
+  } restore{id};
+  // condensation on this rank: its interior's right-hand sides, zero on its separator unknowns
+  std::vector<double> rhs, reduced, separator_rhs;
+  int status = run_locally(
+      [&]()
+      {
+        rhs.assign(n_local * m, 0.0);
+        reduced.assign(ms * m, 0.0);
+        const int *mine = p.interiors.data() + p.interior_offsets[p.rank];
+        for (int c = 0; c < m; ++c)
+          for (int k = 0; k < p.n_interior; ++k)
+            rhs[c * n_local + k] = X[c * n + mine[k]];
+        id.nrhs = m;
+        id.lrhs = static_cast<MUMPS_INT>(n_local);
+        id.rhs = rhs.data();
+        id.redrhs = reduced.data();
+        id.lredrhs = static_cast<MUMPS_INT>(ms);
+        id.icntl[25] = 1;
+        id.job = 3;
+        dmumps_c(&id);
+        if (id.infog[0] >= 0)
+        {
+          separator_rhs.assign(s * m, 0.0);
+          for (int c = 0; c < m; ++c)
+            for (std::size_t k = 0; k < ms; ++k)
+              separator_rhs[c * s + p.my_separator[k]] += reduced[c * ms + k];
+        }
+        return id.infog[0];
+      });
+  agree_on(status, id.infog[1], team, "condensation");
+  // the separator's right-hand side b_S - sum_r A_Sr A_rr^-1 b_r on the first rank, which solves
+  // the complement system and sends x_S to all
+  sum_on_first_rank(separator_rhs, team);
+  std::vector<double> &x_separator = separator_rhs;
+  if (p.rank == 0)
+    status = run_locally(
+        [&]()
+        {
+          dealii::LAPACKFullMatrix<double> x(s, m);
+          for (int c = 0; c < m; ++c)
+            for (std::size_t k = 0; k < s; ++k)
+              x(k, c) = separator_rhs[c * s + k] + X[c * n + p.separator[k]];
+          p.complement.solve(x);
+          for (int c = 0; c < m; ++c)
+            for (std::size_t k = 0; k < s; ++k)
+              x_separator[c * s + k] = x(k, c);
+          return 0;
+        });
+  int ierr = MPI_Bcast(&status, 1, MPI_INT, 0, team);
+  AssertThrowMPI(ierr);
+  if (status < 0)
+    throw std::runtime_error("Reynolds solver: the dense Schur complement solve of a "
+                             "substructured factorisation failed");
+  ierr = MPI_Bcast(x_separator.data(), static_cast<int>(s * m), MPI_DOUBLE, 0, team);
+  AssertThrowMPI(ierr);
+  // expansion: x_r = A_rr^-1 (b_r - A_rS x_S), from the condensation's state in `rhs`
+  std::vector<int> counts(p.ranks), offsets(p.ranks);
+  std::vector<double> my_interior, all;
+  status = run_locally(
+      [&]()
+      {
+        for (int c = 0; c < m; ++c)
+          for (std::size_t k = 0; k < ms; ++k)
+            reduced[c * ms + k] = x_separator[c * s + p.my_separator[k]];
+        id.icntl[25] = 2;
+        id.job = 3;
+        dmumps_c(&id);
+        if (id.infog[0] < 0)
+          return id.infog[0];
+        for (int r = 0; r < p.ranks; ++r)
+        {
+          const long long count =
+                              (long long)(p.interior_offsets[r + 1] - p.interior_offsets[r]) * m,
+                          offset = (long long)p.interior_offsets[r] * m;
+          if (offset + count > std::numeric_limits<int>::max())
+            throw std::runtime_error("too many right-hand sides for MPI counts");
+          counts[r] = static_cast<int>(count);
+          offsets[r] = static_cast<int>(offset);
+        }
+        my_interior.resize(std::size_t(p.n_interior) * m);
+        all.resize((n - s) * m);
+        for (int c = 0; c < m; ++c)
+          std::copy(rhs.begin() + c * n_local, rhs.begin() + c * n_local + p.n_interior,
+                    my_interior.begin() + std::size_t(c) * p.n_interior);
+        return 0;
+      });
+  agree_on(status, id.infog[1], team, "expansion");
+  // every rank's interior values to every rank
+  ierr = MPI_Allgatherv(my_interior.data(), counts[p.rank], MPI_DOUBLE, all.data(), counts.data(),
+                        offsets.data(), MPI_DOUBLE, team);
   AssertThrowMPI(ierr);
   for (int r = 0; r < p.ranks; ++r)
   {
@@ -481,7 +577,7 @@ void SubstructuredLU::solve(double *X, const int m)
   }
   for (int c = 0; c < m; ++c)
     for (std::size_t k = 0; k < s; ++k)
-      X[c * n + p.separator[k]] = x_separator(k, c);
+      X[c * n + p.separator[k]] = x_separator[c * s + k];
 }
 
 } // namespace sealfe::numerics

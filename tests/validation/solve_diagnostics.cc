@@ -157,6 +157,8 @@ TEST(MassBalance, WavyJfoExampleBalances)
   EXPECT_LE(c["band_workspace_retries"].get<unsigned>(),
             3 * c["band_factorizations"].get<unsigned>());
   EXPECT_TRUE(s["linear_solver"]["workspace_retries"].is_number_unsigned());
+  // one rank: nothing to share a factorisation with
+  EXPECT_EQ(s["linear_solver"]["substructured_factorizations"], 0u);
 }
 
 TEST(ErrorEstimate, FailureOfTheCoarseSolveKeepsTheConvergedResult)

@@ -55,6 +55,7 @@ public:
     unsigned int max_krylov_iterations = 0;
     unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
     unsigned int workspace_retries = 0; // MUMPS factorisations repeated with a larger workspace
+    unsigned int substructured_factorizations = 0; // of the factorisations, those shared by ranks
 
     /// The work of several runs together: counts add, the largest Krylov count is the larger.
     Statistics &operator+=(const Statistics &other);
@@ -95,7 +96,13 @@ public:
                      dealii::TrilinosWrappers::MPI::Vector &x);
   /// The ranks that each hold this solver's matrices whole and factorise them together
   /// (SparseDirect::share_with): the coarse mesh-sequencing levels of several ranks.
-  void share_direct_with(MPI_Comm team) { direct.share_with(team); }
+  void share_direct_with(MPI_Comm team)
+  {
+    // (another team: the factorisation is dropped, and with it the prepared matrix)
+    if (team != direct.team_of_replicas())
+      release_factorization();
+    direct.share_with(team);
+  }
   MPI_Comm direct_team() const { return direct.team_of_replicas(); }
   /// Forget the factorisation (new mesh).
   void clear();
@@ -106,7 +113,8 @@ public:
 
   Method method() const { return current_method; }
   const char *method_name() const;
-  /// The sparse direct package of the last factorisation, "KLU" or "MUMPS" ("" if none).
+  /// The sparse direct package of the last factorisation, "KLU", "MUMPS" or "MUMPS,
+  /// substructured" (shared over several ranks) ("" if none).
   const char *direct_package() const { return direct.package_name(); }
   /// The factorisation of the last prepared matrix when it is a direct one and done (not
   /// deferred): the JFO's low-rank updates solve with it. Null otherwise.

@@ -65,15 +65,13 @@ public:
   /// The last factorisation is shared over several ranks (numerics::SubstructuredLU); its
   /// package is MUMPS.
   bool substructured() const { return shared != nullptr; }
-  /// Factorisations shared over several ranks by all SparseDirect objects of this process
-  /// (tests: which levels took the shared path).
-  static inline unsigned int substructured_factorizations = 0;
   /// Factorisations that reused the symbolic analysis of an earlier one.
   unsigned int numeric_only() const { return reused_symbolic; }
   /// MUMPS factorisations repeated with twice the workspace margin (its estimate from the
   /// analysis of the pattern fell short: numerical pivoting), since this object was made.
   unsigned int workspace_retries() const;
-  /// "KLU" or "MUMPS": the package of the last factorisation ("" before the first).
+  /// "KLU", "MUMPS" or "MUMPS, substructured" (shared over several ranks): the package of the
+  /// last factorisation ("" before the first).
   const char *package_name() const { return package; }
 
 private:

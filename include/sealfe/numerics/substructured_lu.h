@@ -17,17 +17,21 @@ namespace sealfe::numerics
 /// so x_S solves the Schur complement system (A_SS - sum_r A_Sr A_rr^-1 A_rS) x_S = b_S - sum_r
 /// A_Sr A_rr^-1 b_r and then x_r = A_rr^-1 (b_r - A_rS x_S). Rank r factorises [A_rr A_rS; A_Sr
 /// 0] with MUMPS (on MPI_COMM_SELF) and hands back its term of the Schur complement (MUMPS's
-/// Schur option, ICNTL(19)); the terms are summed and every rank factorises the dense |S| x |S|
-/// complement (LAPACK). A solve is one condensation on each rank (ICNTL(26) = 1), the dense solve,
-/// one expansion (ICNTL(26) = 2). Exact algebra: the answer is that of one factorisation of A up
-/// to round-off, and the same bits on every rank.
+/// Schur option, ICNTL(19)); the terms are summed on the first rank, which factorises the dense
+/// |S| x |S| complement (LAPACK). A solve is one condensation on each rank (ICNTL(26) = 1), the
+/// dense solve on the first rank, whose x_S goes to all, one expansion on each (ICNTL(26) = 2).
+/// Exact algebra: the answer is that of one factorisation of A up to round-off, and the same bits
+/// on every rank. A failure on any rank (MUMPS's status, or an exception in this rank's part of
+/// the work) throws on every rank; the collective calls run on a communicator of its own.
 ///
 /// The split follows the caller's blocks of unknowns (an index range per rank): the separator is
 /// the unknowns of a block coupled to a later block, thinned where an unknown touches one
-/// interior only. On 2D film meshes whose blocks are sectors of the annulus it is two radial lines
-/// of nodes. Each interior is 1/P of the matrix, so each rank's factorisation costs about 1/P of
-/// the whole one or less, where MUMPS's own parallel factorisation of the whole matrix gains
-/// little on two ranks (doc/performance.md "Session 27").
+/// interior only, with the boundaries between blocks moved to cheaper cuts. On 2D film meshes
+/// whose blocks are sectors of the annulus it is about two radial lines of nodes. Each interior
+/// is 1/P of the matrix, so each rank's factorisation costs about 1/P of the whole one or less,
+/// where MUMPS's own parallel factorisation of the whole matrix gains little on two ranks
+/// (doc/performance.md "Session 27"). No fallback here: a singular part throws (SparseDirect then
+/// factorises the whole matrix).
 class SubstructuredLU
 {
 public:
