@@ -101,7 +101,10 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
       timer, cavitation.model == Cavitation::jfo ? "jfo coarse levels" : "reynolds coarse levels");
   // Every rank decides together: solved whole on each rank, the coarse levels could fail on
   // one rank only (memory, say), which would then take the full-film start alone and wait
-  // forever in its collective solve.
+  // forever in its collective solve. Their shared factorisations (share_direct_with) agree on a
+  // failure inside them on every rank (numerics::SubstructuredLU); a failure on one rank outside
+  // them (an allocation in its assembly, say) still leaves the others waiting in their next
+  // shared factorisation: not handled.
   std::string failure;
   try
   {

@@ -806,6 +806,75 @@ TEST(SparseDirect, RefactorisationOnSeveralRanksWithARankWithoutRows)
   check_refactorisations_on_several_ranks(n_ranks - 1);
 }
 
+// A part may be singular where the whole matrix is not: an interior unknown k coupled only to a
+// separator unknown s (A(k, s) = A(s, k) = 1, no diagonal) cannot be eliminated inside its part,
+// where s may not be a pivot, but the whole matrix pivots k with s (the 2 x 2 block [0 1; 1 d]
+// has determinant -1). The JFO Jacobians have such zero diagonals at cavitated nodes. MUMPS's
+// factorisation of such a part reports no error and its answer is wrong (backward error 1.2e-2
+// and 2.0e-2, k coupled to the separator across the block or next to it, before the check). The
+// shared factorisation must then not give a wrong answer: SparseDirect refuses it, factorises the
+// whole matrix instead (substructured() false afterwards), and the solve has the backward error
+// of a backward-stable LU, 128 u at most (the matrix is well conditioned: the rest strictly
+// diagonally dominant).
+TEST(SparseDirect, SingularPartOnSeveralRanksFallsBackToTheWholeMatrix)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm);
+  if (ranks < 2)
+    GTEST_SKIP() << "needs two ranks or more (ctest sparse_direct_band_on_{2,3}_ranks)";
+  const unsigned int N = 60000, half = N / ranks, separator = half - 1, k = half - 2;
+  const RestoreSubstructuredLimit restore;
+  SparseDirect::substructured_limit = SparseDirect::multifrontal_limit;
+  // a tridiagonal, strictly diagonally dominant matrix but for row and column k; the first
+  // block boundary falls between half - 1 (the separator: it couples to the next block) and half
+  const auto entries = [&](const unsigned int i)
+  {
+    std::vector<std::pair<unsigned int, double>> row;
+    if (i == k)
+      return std::vector<std::pair<unsigned int, double>>{{separator, 1.0}};
+    row.emplace_back(i, 4.0 + 0.001 * (i % 7));
+    if (i > 0 && i - 1 != k)
+      row.emplace_back(i - 1, -1.0);
+    if (i + 1 < N && i + 1 != k)
+      row.emplace_back(i + 1, -1.5);
+    if (i == separator)
+      row.emplace_back(k, 1.0);
+    return row;
+  };
+  const IndexSet all = complete_index_set(N);
+  DynamicSparsityPattern pattern(N, N);
+  for (unsigned int i = 0; i < N; ++i)
+    for (const auto &[j, value] : entries(i))
+      pattern.add(i, j);
+  TrilinosWrappers::SparseMatrix A;
+  A.reinit(all, all, pattern, MPI_COMM_SELF); // whole on every rank, shared over the team
+  for (unsigned int i = 0; i < N; ++i)
+    for (const auto &[j, value] : entries(i))
+      A.set(i, j, value);
+  A.compress(VectorOperation::insert);
+  SparseDirect lu;
+  lu.share_with(comm);
+  lu.factorize(A);
+  TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
+  std::vector<double> b_all(N), x_all(N);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = b_all[i] = std::cos(0.01 * i);
+  lu.solve(b, x);
+  // (the shared factorisation may fail or its answer be refused: either way the whole matrix)
+  EXPECT_FALSE(lu.substructured());
+  EXPECT_STREQ(lu.package_name(), "MUMPS");
+  for (unsigned int i = 0; i < N; ++i)
+    x_all[i] = x[i];
+  EXPECT_LE(backward_error(A, x_all, b_all), 128 * std::numeric_limits<double>::epsilon() / 2);
+  // and the next factorisation of the pattern stays with the whole matrix
+  lu.factorize(A);
+  lu.solve(b, x);
+  EXPECT_FALSE(lu.substructured());
+  for (unsigned int i = 0; i < N; ++i)
+    x_all[i] = x[i];
+  EXPECT_LE(backward_error(A, x_all, b_all), 128 * std::numeric_limits<double>::epsilon() / 2);
+}
+
 // The split of numerics::SubstructuredLU on the pattern of Q2 elements on an nx x ny grid of
 // cells, nodes numbered row by row. Where a block boundary falls between the middle node row of a
 // row of cells and its top edge, the unknowns of the lower block coupled to the upper one are two

@@ -35,6 +35,9 @@ public:
   /// them (numerics::SubstructuredLU) instead of factorised whole by MUMPS's own parallel
   /// factorisation, which gained 1.0-1.3x on two ranks (doc/performance.md "Session 27").
   static inline long long substructured_limit = 50000;
+  /// A shared factorisation's answer with a larger normwise backward error is refused: the
+  /// whole matrix is factorised and solved again (solve()).
+  static constexpr double max_substructured_backward_error = 1e-12;
 
   SparseDirect();
   ~SparseDirect();
@@ -81,6 +84,8 @@ private:
   /// The factorisation shared over several ranks (sparse_direct.cc)
   class Shared;
   std::unique_ptr<Shared> shared;
+  /// The shared factorisation given up for MUMPS's of the whole matrix `A` (collective).
+  void factorize_whole(const Epetra_CrsMatrix &A);
   MPI_Comm team = MPI_COMM_SELF;
   /// KLU through Amesos
   std::unique_ptr<Epetra_LinearProblem> problem;
