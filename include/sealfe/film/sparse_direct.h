@@ -33,7 +33,7 @@ public:
 
   /// From this many unknowns on, a matrix that several ranks factorise together is split over
   /// them (numerics::SubstructuredLU) instead of factorised whole by MUMPS's own parallel
-  /// factorisation, which gained 1.0-1.3x on two ranks (doc/performance.md "Session 27").
+  /// factorisation, which gains little on two ranks (doc/performance.md "Session 27").
   static inline long long substructured_limit = 50000;
   /// A shared factorisation's answer with a larger normwise backward error is refused: the
   /// whole matrix is factorised and solved again (solve()).

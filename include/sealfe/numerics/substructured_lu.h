@@ -1,5 +1,5 @@
 // SubstructuredLU: a sparse LU that the ranks of a team share by a vertex separator, each rank
-// factorising its own part with MUMPS and every rank the dense Schur complement on the separator.
+// factorising its own part with MUMPS and the first rank the dense Schur complement on it.
 // The direct solver of the cavitation models' Newton systems on several ranks.
 #pragma once
 
@@ -31,7 +31,8 @@ namespace sealfe::numerics
 /// is 1/P of the matrix, so each rank's factorisation costs about 1/P of the whole one or less,
 /// where MUMPS's own parallel factorisation of the whole matrix gains little on two ranks
 /// (doc/performance.md "Session 27"). No fallback here: a singular part throws (SparseDirect then
-/// factorises the whole matrix).
+/// factorises the whole matrix), or it may come back without an error and a wrong answer (an
+/// interior unknown coupled only to separator unknowns): SparseDirect checks every answer.
 class SubstructuredLU
 {
 public:
