@@ -77,6 +77,38 @@ double *values_in_storage_order(const Epetra_CrsMatrix &A, const std::size_t ent
                            "analysis");
   return storage;
 }
+
+/// The normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf) of x for A, b and x
+/// whole on this rank (n values each, by global index); A's rows this rank's, their residuals'
+/// largest taken over `comm` (collective there). NaN if x is.
+double backward_error_of(const Epetra_CrsMatrix &A, const double *b, const double *x,
+                         const std::size_t n, const MPI_Comm comm)
+{
+  std::vector<double> x_column(A.NumMyCols()); // x by local column index
+  for (int c = 0; c < A.NumMyCols(); ++c)
+    x_column[c] = x[A.ColMap().GID64(c)];
+  double r_max = 0, x_max = 0, b_max = 0;
+  for (int row = 0; row < A.NumMyRows(); ++row)
+  {
+    int entries;
+    double *values;
+    int *columns;
+    A.ExtractMyRowView(row, entries, values, columns);
+    double r = b[A.RowMap().GID64(row)];
+    for (int e = 0; e < entries; ++e)
+      r -= values[e] * x_column[columns[e]];
+    r_max = std::max(r_max, std::abs(r));
+  }
+  const int ierr = MPI_Allreduce(MPI_IN_PLACE, &r_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  AssertThrowMPI(ierr);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    x_max = std::max(x_max, std::abs(x[i]));
+    b_max = std::max(b_max, std::abs(b[i]));
+  }
+  const double scale = A.NormInf() * x_max + b_max;
+  return scale > 0 ? r_max / scale : 0.0;
+}
 } // namespace
 
 /// MUMPS driven directly through its C interface. Amesos_Mumps, used before, converted the matrix
@@ -465,8 +497,8 @@ public:
       lu.factorize(storage);
   }
 
-  /// x = A^-1 b, A the factorised matrix; returns the normwise backward error |b - A x|_inf /
-  /// (|A|_inf |x|_inf + |b|_inf) of the answer (the same on every rank). Collective.
+  /// x = A^-1 b, A the factorised matrix; returns the answer's normwise backward error
+  /// (backward_error_of, the same on every rank; NaN for a NaN answer). Collective.
   double solve(const Epetra_CrsMatrix &A, const Epetra_MultiVector &b, Epetra_MultiVector &x)
   {
     if (b.NumVectors() != 1 || x.NumVectors() != 1)
@@ -491,32 +523,7 @@ public:
     lu.solve(whole.data(), 1);
     for (int i = 0; i < x.MyLength(); ++i)
       x[0][i] = whole[x.Map().GID64(i)];
-    // the residual of this rank's rows, with x whole here
-    double r_max = 0, x_max = 0, b_max = 0;
-    for (int row = 0; row < A.NumMyRows(); ++row)
-    {
-      int entries;
-      double *values;
-      int *columns;
-      A.ExtractMyRowView(row, entries, values, columns);
-      double r = rhs[A.RowMap().GID64(row)];
-      for (int e = 0; e < entries; ++e)
-        r -= values[e] * whole[A.ColMap().GID64(columns[e])];
-      r_max = std::max(r_max, std::abs(r));
-    }
-    for (int i = 0; i < n; ++i)
-    {
-      x_max = std::max(x_max, std::abs(whole[i]));
-      b_max = std::max(b_max, std::abs(rhs[i]));
-    }
-    if (distributed)
-    {
-      const int ierr = MPI_Allreduce(MPI_IN_PLACE, &r_max, 1, MPI_DOUBLE, MPI_MAX, comm);
-      AssertThrowMPI(ierr);
-    }
-    const double scale = A.NormInf() * x_max + b_max;
-    // (a NaN answer counts as the worst)
-    return scale > 0 ? (r_max / scale == r_max / scale ? r_max / scale : 1.0) : 0.0;
+    return backward_error_of(A, rhs.data(), whole.data(), n, comm);
   }
 
   /// X (n x m, this rank's whole matrix) = A^-1 X. Collective.
@@ -675,6 +682,7 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
     // so every answer is checked: backward-stable solves of these matrices measure 7e-19 to
     // 4e-17, and one above 1e-12 is refactorised whole and solved again (on every rank: the
     // error is the same on all)
+    // (a NaN error fails the comparison too)
     if (shared->solve(*pattern_owner, b.trilinos_vector(), x.trilinos_vector()) <=
         max_substructured_backward_error)
       return;
@@ -865,29 +873,7 @@ LowRankSolve solve_column_update(SparseDirect &lu,
     }
   }
   // the true residual of A1: the update is exact algebra, its round-off is checked here
-  const Epetra_CrsMatrix &A1 = matrix.trilinos_matrix();
-  std::vector<double> x_column(A1.NumMyCols()); // result by local column index
-  for (int c = 0; c < A1.NumMyCols(); ++c)
-    x_column[c] = result[A1.ColMap().GID64(c)];
-  double r_max = 0, x_max = 0, b_max = 0;
-  for (int row = 0; row < A1.NumMyRows(); ++row)
-  {
-    int entries;
-    double *values;
-    int *cols;
-    A1.ExtractMyRowView(row, entries, values, cols);
-    double r = b[A1.RowMap().GID64(row)];
-    for (int e = 0; e < entries; ++e)
-      r -= values[e] * x_column[cols[e]];
-    r_max = std::max(r_max, std::abs(r));
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    x_max = std::max(x_max, std::abs(result[i]));
-    b_max = std::max(b_max, std::abs(b[i]));
-  }
-  const double scale = matrix.linfty_norm() * x_max + b_max;
-  backward_error = scale > 0 ? r_max / scale : 0.0;
+  backward_error = backward_error_of(matrix.trilinos_matrix(), b, result.data(), n, MPI_COMM_SELF);
   if (!(backward_error <= max_backward_error))
     return LowRankSolve::inaccurate;
   std::copy(result.begin(), result.end(), x);

@@ -25,8 +25,6 @@ class SubstructuredLU::Part
 {
 public:
   int n = 0, rank = 0, ranks = 1;
-  /// the blocks the split started from (block_start with its boundaries moved)
-  std::vector<long long> starts;
   /// rank of the interior of each unknown, or in_separator
   std::vector<int> home;
   /// the separator's unknowns, ascending
@@ -121,6 +119,16 @@ void sum_on_first_rank(std::vector<double> &values, const MPI_Comm team)
   AssertThrowMPI(ierr);
 }
 
+/// Every rank throws `message` if the first rank's `status` is negative (its work that the others
+/// wait for). Collective.
+void first_rank_decides(int status, const MPI_Comm team, const char *message)
+{
+  const int ierr = MPI_Bcast(&status, 1, MPI_INT, 0, team);
+  AssertThrowMPI(ierr);
+  if (status < 0)
+    throw std::runtime_error(message);
+}
+
 /// `work()` on this rank alone, its status (a MUMPS INFOG(1), or -1 for an exception) for
 /// agree_on, so that a failure on one rank does not leave the others in a collective call
 template <class Work>
@@ -194,7 +202,7 @@ SubstructuredLU::split(const int n, const std::vector<int> &row, const std::vect
       if (reach[i] > i)
       {
         ++crossing[i + 1];
-        --crossing[reach[i] + 1 <= n ? reach[i] + 1 : n];
+        --crossing[reach[i] + 1]; // (reach[i] <= n - 1)
       }
     for (int k = 1; k <= n; ++k)
       crossing[k] += crossing[k - 1];
@@ -225,7 +233,6 @@ SubstructuredLU::split(const int n, const std::vector<int> &row, const std::vect
   std::vector<int> block(n);
   for (int r = 0; r < ranks; ++r)
     std::fill(block.begin() + starts[r], block.begin() + starts[r + 1], r);
-  p->starts = starts;
   // the separator: unknowns of a block coupled to a later block (either direction of the entry)
   std::vector<char> separating(n, 0);
   for (std::size_t e = 0; e < entries; ++e)
@@ -242,10 +249,9 @@ SubstructuredLU::split(const int n, const std::vector<int> &row, const std::vect
   // interior. On a Q2 mesh the one-sided separator is two or three node lines where one line of
   // cell edges separates (tests/validation/sparse_direct.cc, SubstructuredLU); on a Q2 grid
   // matrix of 1.05e6 unknowns a separator of that one line (METIS's, 1026 unknowns against the
-  // one-sided 1539) took the costlier part's factorisation from 3.6e10 to 2.5e10 flops. Two such
-  // unknowns coupled to each other but bound for different interiors both stay (the larger
-  // index is dropped from the move; the smaller may be dropped by another pair: valid either
-  // way).
+  // one-sided 1539) took the costlier part's factorisation from 3.6e10 to 2.5e10 flops. Of two such
+  // unknowns coupled to each other but bound for different interiors the larger index stays in
+  // the separator (the smaller may stay too, by another pair: valid either way).
   constexpr int no_neighbour = -2, several = -3;
   std::vector<int> bound_for(n, no_neighbour);
   auto note = [&](const int s, const int interior_block)
@@ -451,11 +457,9 @@ void SubstructuredLU::factorize(const double *values)
           p.complement.compute_lu_factorization();
           return 0;
         });
-  int ierr = MPI_Bcast(&status, 1, MPI_INT, 0, team);
-  AssertThrowMPI(ierr);
-  if (status < 0)
-    throw std::runtime_error("Reynolds solver: the Schur complement of a substructured "
-                             "factorisation is singular");
+  first_rank_decides(status, team,
+                     "Reynolds solver: the Schur complement of a substructured factorisation is "
+                     "singular");
 }
 
 void SubstructuredLU::solve(double *X, const int m)
@@ -525,12 +529,10 @@ void SubstructuredLU::solve(double *X, const int m)
               x_separator[c * s + k] = x(k, c);
           return 0;
         });
-  int ierr = MPI_Bcast(&status, 1, MPI_INT, 0, team);
-  AssertThrowMPI(ierr);
-  if (status < 0)
-    throw std::runtime_error("Reynolds solver: the dense Schur complement solve of a "
-                             "substructured factorisation failed");
-  ierr = MPI_Bcast(x_separator.data(), static_cast<int>(s * m), MPI_DOUBLE, 0, team);
+  first_rank_decides(status, team,
+                     "Reynolds solver: the dense Schur complement solve of a substructured "
+                     "factorisation failed");
+  int ierr = MPI_Bcast(x_separator.data(), static_cast<int>(s * m), MPI_DOUBLE, 0, team);
   AssertThrowMPI(ierr);
   // expansion: x_r = A_rr^-1 (b_r - A_rS x_S), from the condensation's state in `rhs`
   std::vector<int> counts(p.ranks), offsets(p.ranks);
