@@ -7,6 +7,9 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <Epetra_BlockMap.h>
+
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -77,13 +80,13 @@ private:
   /// values, and the merit is not that of the whole system).
   double assemble(const VectorType &a, const VectorType &v, bool with_jacobian,
                   bool active_set_step = false, const std::vector<bool> *only_rows = nullptr);
-  /// The global matrices P A and G in the storage order of the system matrix (one rank, only
-  /// Dirichlet constraints), so that an active-set Jacobian is a column selection of the two;
-  /// false (and the cell-by-cell assembly is used) otherwise.
+  /// The global matrices P A and G in the storage order of the system matrix (each rank its own
+  /// rows; only Dirichlet constraints), so that an active-set Jacobian is a column selection of
+  /// the two; false (and the cell-by-cell assembly is used) otherwise.
   bool prepare_global_matrices();
   /// The residual (and, with `with_rhs`, the right-hand side of the active-set system) at (a, v)
   /// as products of the global P A and G instead of a loop over the cells; false (nothing done)
-  /// when the global matrices are not there or the vectors are not the plain one-rank layout.
+  /// when the global matrices are not there or a and v lack a column of this rank's rows.
   bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs,
                             const std::vector<bool> *only_rows = nullptr);
   /// The local values of an owned (not ghosted) vector: entry k is the k-th locally owned dof.
@@ -91,7 +94,8 @@ private:
   const double *owned_values(const VectorType &x) const;
   /// The FB-Newton Jacobian at (a, v) into the system matrix (no right-hand side) as column
   /// combinations of the global P A and G, for the linearised loads at the solution; false
-  /// (nothing done) when the global matrices or the plain one-rank layout are not there.
+  /// (nothing done, on every rank) when the global matrices are not there or a and v lack a
+  /// column of some rank's rows. Collective.
   bool jacobian_by_columns(const VectorType &a, const VectorType &v);
   /// Start from the converged state of the mesh twice as coarse, else the clipped full film.
   void warm_start();
@@ -144,6 +148,18 @@ private:
   std::vector<char> constrained;
   std::vector<double> constrained_a, constrained_v;
   std::vector<long long> row_gid, column_gid;
+  /// Several ranks: the position in the ghosted vectors' storage (a, v, ta, tv share one layout)
+  /// of each local column of the system matrix (-1: not held) and of each owned dof, found once
+  /// for `ghosted_layout` instead of a map lookup per entry at every assembly (0.28 s of the
+  /// JFO assembly at 1.05e6 dofs on two ranks, doc/performance.md "Session 28").
+  std::vector<int> column_in_ghosted, owned_in_ghosted;
+  std::unique_ptr<Epetra_BlockMap> ghosted_layout;
+  /// x (ghosted, or plain on one rank) at the system matrix's local columns: values[c] is x at
+  /// dof column_gid[c]. False if x lacks a column.
+  bool values_at_columns(const VectorType &x, std::vector<double> &values);
+  /// The positions above for x's layout (made again if x's map is not the one they were found
+  /// for); false if x holds no ghosts.
+  bool find_ghosted_positions(const VectorType &x);
   /// Set by assemble_by_products with the right-hand side: per local column of the system
   /// matrix, whether that node keeps its pressure (a_j >= v_j); assemble's column selection of the
   /// same round reads it instead of gathering a and v at the columns again.
