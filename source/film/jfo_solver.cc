@@ -324,8 +324,10 @@ bool JFOSolver::values_at_columns(const VectorType &x, std::vector<double> &valu
   values.resize(M.NumMyCols());
   if (const double *plain = plain_values(x, s.dof_handler.n_dofs()))
   {
+    // (column_gid once assemble_by_products has listed it: a GID64 call per column otherwise)
+    const bool listed = column_gid.size() == static_cast<std::size_t>(M.NumMyCols());
     for (int c = 0; c < M.NumMyCols(); ++c)
-      values[c] = plain[M.ColMap().GID64(c)];
+      values[c] = plain[listed ? column_gid[c] : M.ColMap().GID64(c)];
     return true;
   }
   if (!find_ghosted_positions(x))

@@ -142,7 +142,7 @@ public:
     for (const int stream : {0, 1, 2, 3})
       id.icntl[stream] = -1; // no messages: errors come back as INFOG(1) and are thrown
     id.icntl[5] = 7;         // column permutation (ICNTL(6)) chosen by MUMPS
-    id.icntl[6] = 0;         // AMD ordering: quicker than METIS and MUMPS's choice here
+    id.icntl[6] = 0;         // AMD ordering: quicker than PORD and MUMPS's choice here
     id.icntl[7] = 7;         // scaling (ICNTL(8)) chosen by MUMPS
     id.icntl[13] = initial_workspace_margin; // ICNTL(14), per cent of the estimate
     // the matrix on the host (ICNTL(18) = 0), also on several ranks (analyse, factorize)
@@ -591,8 +591,9 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     clear();
     // KLU (left-looking, no dense kernels) is quickest on small systems; above a few 1e4
     // unknowns MUMPS's multifrontal factorisation with dense BLAS-3 fronts is 2-7x faster on these
-    // 2D meshes (doc/performance.md "Direct solver"). AMD ordering: measured quicker than METIS
-    // nested dissection and MUMPS's automatic choice at 2.6e5 and 1e6 unknowns.
+    // 2D meshes (doc/performance.md "Direct solver"). AMD ordering: measured quicker than nested
+    // dissection (PORD: Debian's MUMPS has no METIS, doc/performance.md "Session 28") and
+    // MUMPS's automatic choice at 2.6e5 and 1e6 unknowns.
     package = A.NumGlobalRows64() < multifrontal_limit ? "KLU" : "MUMPS";
     // Several ranks on one matrix: shared by a separator where it is large enough to pay
     const MPI_Comm sharing =
@@ -901,19 +902,26 @@ std::vector<bool> grow_in_graph(const dealii::TrilinosWrappers::SparseMatrix &ma
     }
   };
   unite(marked);
+  // the rows' and columns' global indices once for all layers (a GID64 call per row and layer
+  // was most of this function's time in the band rounds)
+  std::vector<long long> row_gid(A.NumMyRows()), column_gid(A.NumMyCols());
+  for (int row = 0; row < A.NumMyRows(); ++row)
+    row_gid[row] = A.RowMap().GID64(row);
+  for (int c = 0; c < A.NumMyCols(); ++c)
+    column_gid[c] = A.ColMap().GID64(c);
   for (unsigned int layer = 0; layer < layers; ++layer)
   {
     std::vector<unsigned char> grown(marked);
     for (int row = 0; row < A.NumMyRows(); ++row)
     {
-      if (!marked[A.RowMap().GID64(row)])
+      if (!marked[row_gid[row]])
         continue;
       int n;
       double *values;
       int *columns;
       A.ExtractMyRowView(row, n, values, columns);
       for (int k = 0; k < n; ++k)
-        grown[A.ColMap().GID64(columns[k])] = 1;
+        grown[column_gid[columns[k]]] = 1;
     }
     unite(grown);
     marked.swap(grown);
