@@ -84,8 +84,11 @@ JFOSolver::JFOSolver(ReynoldsSolver &solver)
   for (VectorType *x :
        {&a_owned, &v_owned, &residual, &newton_rhs, &w, &da, &dv, &trial_a, &trial_v})
     x->reinit(owned, comm);
-  for (VectorType *x : {&a, &v, &ta, &tv})
-    x->reinit(owned, relevant, comm);
+  // the ghosted vectors share a's map (its data, not a copy of its elements), so that
+  // find_ghosted_positions knows their layout by a pointer
+  a.reinit(owned, relevant, comm);
+  for (VectorType *x : {&v, &ta, &tv})
+    x->reinit(a);
 }
 
 bool JFOSolver::prepare_global_matrices()
@@ -296,14 +299,24 @@ double *JFOSolver::owned_values(VectorType &x) const
   return x.trilinos_vector()[0];
 }
 
-bool JFOSolver::find_ghosted_positions(const VectorType &x)
+unsigned int JFOSolver::find_ghosted_positions(const VectorType &x)
 {
+  // No MPI here (Epetra's SameAs is collective: it would pair with other ranks' calls where
+  // the callers' conditions differ between ranks): the layout is known by its map's data, or
+  // by its elements compared on this rank.
   if (!x.has_ghost_elements())
-    return false;
+    return 0;
   const Epetra_BlockMap &layout = x.trilinos_vector().Map();
-  // (SameAs: the same data at once, else an element-by-element comparison, 4 bytes a dof)
-  if (ghosted_layout && layout.SameAs(*ghosted_layout))
-    return true;
+  if (ghosted_layout && layout.DataPtr() == ghosted_layout->DataPtr())
+    return ghosted_layout_id;
+  if (ghosted_layout && layout.NumMyElements() == ghosted_layout->NumMyElements())
+  {
+    bool same = true;
+    for (int k = 0; k < layout.NumMyElements() && same; ++k)
+      same = layout.GID64(k) == ghosted_layout->GID64(k);
+    if (same)
+      return ghosted_layout_id;
+  }
   const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
   column_in_ghosted.resize(M.NumMyCols());
   for (int c = 0; c < M.NumMyCols(); ++c)
@@ -313,7 +326,7 @@ bool JFOSolver::find_ghosted_positions(const VectorType &x)
   for (const auto i : s.locally_owned_dofs)
     owned_in_ghosted.push_back(layout.LID(static_cast<long long>(i)));
   ghosted_layout = std::make_unique<Epetra_BlockMap>(layout);
-  return true;
+  return ++ghosted_layout_id;
 }
 
 bool JFOSolver::values_at_columns(const VectorType &x, std::vector<double> &values)
@@ -330,7 +343,7 @@ bool JFOSolver::values_at_columns(const VectorType &x, std::vector<double> &valu
       values[c] = plain[listed ? column_gid[c] : M.ColMap().GID64(c)];
     return true;
   }
-  if (!find_ghosted_positions(x))
+  if (find_ghosted_positions(x) == 0)
     return false;
   const double *held = x.trilinos_vector()[0];
   for (int c = 0; c < M.NumMyCols(); ++c)
@@ -355,12 +368,12 @@ bool JFOSolver::jacobian_by_columns(const VectorType &a, const VectorType &v)
   // collective.
   if (global_matrices != 1 || assemble_by_cells)
     return false;
+  TimerOutput::Scope timer_scope(s.timer, "jfo assembly");
   std::vector<double> column_a, column_v;
   const bool here =
       !row_gid.empty() && values_at_columns(a, column_a) && values_at_columns(v, column_v);
   if (Utilities::MPI::min(here ? 1 : 0, s.mpi_communicator) == 0)
     return false;
-  TimerOutput::Scope timer_scope(s.timer, "jfo assembly");
   const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
   std::vector<double> alpha(M.NumMyCols(), 1.0), beta(M.NumMyCols(), 0.0);
   for (int c = 0; c < M.NumMyCols(); ++c)
@@ -659,9 +672,10 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
       if (!s.homogeneous_constraints.is_constrained(i))
         fb_squared += Utilities::fixed_power<2>(FischerBurmeister(pa[i], pv[i]).value);
   }
-  else if (find_ghosted_positions(a) && find_ghosted_positions(v))
+  else if (const unsigned int layout = find_ghosted_positions(a);
+           layout != 0 && find_ghosted_positions(v) == layout)
   {
-    // several ranks: a and v share one layout (a lookup per dof was 0.08 s at 1.05e6 dofs)
+    // several ranks: a and v of one layout (a lookup per dof was 0.08 s at 1.05e6 dofs)
     const double *held_a = a.trilinos_vector()[0], *held_v = v.trilinos_vector()[0];
     std::size_t k = 0;
     for (const auto i : s.locally_owned_dofs)

@@ -53,8 +53,8 @@ public:
   /// Test hook (tests/validation/cavitation_fe.cc): on a solver set up for JFO (after a run),
   /// the flat P A and G of prepare_global_matrices next to deal.II's assembly of the same cell
   /// matrices into a copy of the system matrix (AffineConstraints::distribute_local_to_global
-  /// with the homogeneous constraints), read in the same storage order; all empty where the
-  /// global matrices do not apply (several ranks, hanging nodes).
+  /// with the homogeneous constraints), read in the same storage order (this rank's rows); all
+  /// empty where the global matrices do not apply (hanging nodes).
   struct GlobalMatricesAndAssembly
   {
     std::vector<double> PA, G, assembled_PA, assembled_G;
@@ -63,8 +63,9 @@ public:
   /// Test hook (tests/validation/cavitation_fe.cc): on a solver after a JFO run, the FB-Newton
   /// Jacobian at its solution built again, by columns of the global P A and G
   /// (jacobian_by_columns) or by the cell loop (assemble()), and left for the linearised loads
-  /// as solve() leaves it; returns its values in storage order (empty where by columns does not
-  /// apply, or where the solution's a, v from its pressure do not give the stored elimination).
+  /// as solve() leaves it; returns this rank's rows' values in storage order (empty where by
+  /// columns does not apply, or where the solution's a, v from its pressure do not give this
+  /// rank's stored elimination: the caller agrees on it with the other ranks).
   std::vector<double> jacobian_at_solution(bool by_columns);
   /// Test hook (tests/validation/cavitation_fe.cc): on a solver after a run, this rank's owned
   /// entries of the full-film right-hand side made from the cell matrices (ReynoldsSolver::
@@ -86,7 +87,8 @@ private:
   bool prepare_global_matrices();
   /// The residual (and, with `with_rhs`, the right-hand side of the active-set system) at (a, v)
   /// as products of the global P A and G instead of a loop over the cells; false (nothing done)
-  /// when the global matrices are not there or a and v lack a column of this rank's rows.
+  /// (on every rank) when the global matrices are not there or a and v lack a column of some
+  /// rank's rows. Collective.
   bool assemble_by_products(const VectorType &a, const VectorType &v, bool with_rhs,
                             const std::vector<bool> *only_rows = nullptr);
   /// The local values of an owned (not ghosted) vector: entry k is the k-th locally owned dof.
@@ -148,18 +150,21 @@ private:
   std::vector<char> constrained;
   std::vector<double> constrained_a, constrained_v;
   std::vector<long long> row_gid, column_gid;
-  /// Several ranks: the position in the ghosted vectors' storage (a, v, ta, tv share one layout)
+  /// Several ranks: the position in the ghosted vectors' storage (a, v, ta, tv share a's map)
   /// of each local column of the system matrix (-1: not held) and of each owned dof, found once
   /// for `ghosted_layout` instead of a map lookup per entry at every assembly (0.28 s of the
-  /// JFO assembly at 1.05e6 dofs on two ranks, doc/performance.md "Session 28").
+  /// JFO assembly at 1.05e6 dofs on two ranks, doc/performance.md "Session 28"), and a number
+  /// of that layout (0: none yet).
   std::vector<int> column_in_ghosted, owned_in_ghosted;
   std::unique_ptr<Epetra_BlockMap> ghosted_layout;
+  unsigned int ghosted_layout_id = 0;
   /// x (ghosted, or plain on one rank) at the system matrix's local columns: values[c] is x at
   /// dof column_gid[c]. False if x lacks a column.
   bool values_at_columns(const VectorType &x, std::vector<double> &values);
   /// The positions above for x's layout (made again if x's map is not the one they were found
-  /// for); false if x holds no ghosts.
-  bool find_ghosted_positions(const VectorType &x);
+  /// for, by its data or its elements), and that layout's number; 0 if x holds no ghosts. This
+  /// rank alone (no MPI).
+  unsigned int find_ghosted_positions(const VectorType &x);
   /// Set by assemble_by_products with the right-hand side: per local column of the system
   /// matrix, whether that node keeps its pressure (a_j >= v_j); assemble's column selection of the
   /// same round reads it instead of gathering a and v at the columns again.
