@@ -302,25 +302,17 @@ double *JFOSolver::owned_values(VectorType &x) const
 unsigned int JFOSolver::find_ghosted_positions(const VectorType &x)
 {
   // No MPI here (Epetra's SameAs is collective: it would pair with other ranks' calls where
-  // the callers' conditions differ between ranks): the layout is known by its map's data, or
-  // by its elements compared on this rank.
+  // the callers' conditions differ between ranks): the layout is known by its map's data, which
+  // a, v, ta and tv share (the copy kept holds that data, so its address is not reused).
   if (!x.has_ghost_elements())
     return 0;
   const Epetra_BlockMap &layout = x.trilinos_vector().Map();
   if (ghosted_layout && layout.DataPtr() == ghosted_layout->DataPtr())
     return ghosted_layout_id;
-  if (ghosted_layout && layout.NumMyElements() == ghosted_layout->NumMyElements())
-  {
-    bool same = true;
-    for (int k = 0; k < layout.NumMyElements() && same; ++k)
-      same = layout.GID64(k) == ghosted_layout->GID64(k);
-    if (same)
-      return ghosted_layout_id;
-  }
-  const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
-  column_in_ghosted.resize(M.NumMyCols());
-  for (int c = 0; c < M.NumMyCols(); ++c)
-    column_in_ghosted[c] = layout.LID(M.ColMap().GID64(c));
+  list_global_indices();
+  column_in_ghosted.resize(column_gid.size());
+  for (std::size_t c = 0; c < column_gid.size(); ++c)
+    column_in_ghosted[c] = layout.LID(column_gid[c]);
   owned_in_ghosted.clear();
   owned_in_ghosted.reserve(s.locally_owned_dofs.n_elements());
   for (const auto i : s.locally_owned_dofs)
@@ -329,24 +321,41 @@ unsigned int JFOSolver::find_ghosted_positions(const VectorType &x)
   return ++ghosted_layout_id;
 }
 
+void JFOSolver::list_global_indices()
+{
+  if (indices_listed)
+    return;
+  const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
+  row_gid.resize(M.NumMyRows());
+  for (int r = 0; r < M.NumMyRows(); ++r)
+    row_gid[r] = M.RowMap().GID64(r);
+  column_gid.resize(M.NumMyCols());
+  for (int c = 0; c < M.NumMyCols(); ++c)
+    column_gid[c] = M.ColMap().GID64(c);
+  // by global index; the dofs of this rank's cells (on one rank every dof)
+  constrained.assign(s.dof_handler.n_dofs(), 0);
+  for (const auto i : s.locally_relevant_dofs)
+    constrained[i] = s.homogeneous_constraints.is_constrained(i);
+  indices_listed = true;
+}
+
 bool JFOSolver::values_at_columns(const VectorType &x, std::vector<double> &values)
 {
   // on one rank from the plain layout, on several from the ghosted vector, which holds every
   // column of an owned row (a dof of a cell around it, owned or ghost, so locally relevant)
-  const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
-  values.resize(M.NumMyCols());
+  list_global_indices();
+  const std::size_t columns = column_gid.size();
+  values.resize(columns);
   if (const double *plain = plain_values(x, s.dof_handler.n_dofs()))
   {
-    // (column_gid once assemble_by_products has listed it: a GID64 call per column otherwise)
-    const bool listed = column_gid.size() == static_cast<std::size_t>(M.NumMyCols());
-    for (int c = 0; c < M.NumMyCols(); ++c)
-      values[c] = plain[listed ? column_gid[c] : M.ColMap().GID64(c)];
+    for (std::size_t c = 0; c < columns; ++c)
+      values[c] = plain[column_gid[c]];
     return true;
   }
   if (find_ghosted_positions(x) == 0)
     return false;
   const double *held = x.trilinos_vector()[0];
-  for (int c = 0; c < M.NumMyCols(); ++c)
+  for (std::size_t c = 0; c < columns; ++c)
   {
     if (column_in_ghosted[c] < 0)
       return false;
@@ -411,21 +420,8 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
   // owned dofs in order), a and v by the matrix's local column index.
   if (global_matrices != 1 || assemble_by_cells)
     return false;
-  const std::size_t n = s.dof_handler.n_dofs();
   const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
-  if (row_gid.empty())
-  {
-    row_gid.resize(M.NumMyRows());
-    for (int r = 0; r < M.NumMyRows(); ++r)
-      row_gid[r] = M.RowMap().GID64(r);
-    column_gid.resize(M.NumMyCols());
-    for (int c = 0; c < M.NumMyCols(); ++c)
-      column_gid[c] = M.ColMap().GID64(c);
-    // by global index; the dofs of this rank's cells (on one rank every dof)
-    constrained.assign(n, 0);
-    for (const auto i : s.locally_relevant_dofs)
-      constrained[i] = s.homogeneous_constraints.is_constrained(i);
-  }
+  list_global_indices();
   // the owned vectors' entry k is the k-th owned dof, the matrix's row k the same dof
   double *res = owned_values(residual), *rhs = owned_values(newton_rhs);
   const IndexSet &owned = s.locally_owned_dofs;

@@ -149,7 +149,11 @@ private:
   std::vector<double> constant_residual, constant_rhs;
   std::vector<char> constrained;
   std::vector<double> constrained_a, constrained_v;
+  /// The system matrix's rows' and local columns' global indices, listed once
+  /// (list_global_indices, with `constrained`).
   std::vector<long long> row_gid, column_gid;
+  bool indices_listed = false;
+  void list_global_indices();
   /// Several ranks: the position in the ghosted vectors' storage (a, v, ta, tv share a's map)
   /// of each local column of the system matrix (-1: not held) and of each owned dof, found once
   /// for `ghosted_layout` instead of a map lookup per entry at every assembly (0.28 s of the
@@ -161,9 +165,9 @@ private:
   /// x (ghosted, or plain on one rank) at the system matrix's local columns: values[c] is x at
   /// dof column_gid[c]. False if x lacks a column.
   bool values_at_columns(const VectorType &x, std::vector<double> &values);
-  /// The positions above for x's layout (made again if x's map is not the one they were found
-  /// for, by its data or its elements), and that layout's number; 0 if x holds no ghosts. This
-  /// rank alone (no MPI).
+  /// The positions above for x's layout (made again if x's map does not share the data of the
+  /// one they were found for), and that layout's number; 0 if x holds no ghosts. This rank alone
+  /// (no MPI).
   unsigned int find_ghosted_positions(const VectorType &x);
   /// Set by assemble_by_products with the right-hand side: per local column of the system
   /// matrix, whether that node keeps its pressure (a_j >= v_j); assemble's column selection of the
