@@ -385,6 +385,13 @@ SubstructuredLU::split(const int n, const std::vector<int> &row, const std::vect
   id.icntl[7] = 7;
   id.icntl[13] = 20;
   id.icntl[18] = 3;
+  // Null pivots detected and counted (ICNTL(24) = 1, INFOG(28)), refused in factorize(): without
+  // it a part with an exactly zero pivot came back from MUMPS without an error, and the shared
+  // solve of a singular matrix gave 4.5e15 with a backward error small enough to pass the check
+  // (SparseDirect.SingularMatrixSharedOnSeveralRanksIsRefusedOnEveryRank), where one rank's
+  // MUMPS of the whole matrix says it is singular. The threshold (CNTL(3) = 0: MUMPS's default,
+  // relative to the matrix's norm) flags only pivots at round-off level.
+  id.icntl[23] = 1;
   id.n = p->n_local;
   id.nnz = static_cast<MUMPS_INT8>(p->local_row.size());
   id.irn = p->local_row.data();
@@ -425,6 +432,10 @@ void SubstructuredLU::factorize(const double *values)
           id.icntl[13] *= 2;
           ++p.retries;
         }
+        // a null pivot (INFOG(28)): this part, or the whole matrix, is singular (MUMPS's
+        // "numerically singular", -10; SparseDirect then tries the whole matrix)
+        if (id.infog[0] >= 0 && id.infog[27] > 0)
+          return -10;
         return id.infog[0];
       });
   agree_on(local, id.infog[1], team, "factorisation");

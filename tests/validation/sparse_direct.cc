@@ -875,6 +875,70 @@ TEST(SparseDirect, SingularPartOnSeveralRanksFallsBackToTheWholeMatrix)
   EXPECT_LE(backward_error(A, x_all, b_all), 128 * std::numeric_limits<double>::epsilon() / 2);
 }
 
+// A matrix singular as a whole and shared by the ranks: one unknown coupled to nothing, with a
+// zero diagonal (stored), an exactly zero pivot in any elimination order. The part that holds it
+// cannot be factorised, nor can the whole matrix it falls back to.
+// Every rank must leave the factorisation with an error that says so (a rank left in a
+// collective call would hang the run, one that went on would solve with no factorisation), and
+// the ranks must still work together afterwards: a nonsingular matrix of the same pattern is then
+// factorised and solved to the backward error of a backward-stable LU.
+TEST(SparseDirect, SingularMatrixSharedOnSeveralRanksIsRefusedOnEveryRank)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm);
+  if (ranks < 2)
+    GTEST_SKIP() << "needs two ranks or more (ctest sparse_direct_band_on_{2,3}_ranks)";
+  const unsigned int N = 60000, zero_row = N / ranks / 2; // inside the first rank's block
+  const RestoreSubstructuredLimit restore;
+  SparseDirect::substructured_limit = SparseDirect::multifrontal_limit;
+  const IndexSet all = complete_index_set(N);
+  DynamicSparsityPattern pattern(N, N);
+  for (unsigned int i = 0; i < N; ++i)
+    for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, N - 1); ++j)
+      pattern.add(i, j);
+  TrilinosWrappers::SparseMatrix A;
+  A.reinit(all, all, pattern, MPI_COMM_SELF); // whole on every rank, shared over the team
+  const auto set_values = [&](const double zero_row_diagonal)
+  {
+    for (unsigned int i = 0; i < N; ++i)
+    {
+      const bool zero = i == zero_row;
+      A.set(i, i, zero ? zero_row_diagonal : 4.0 + 0.001 * (i % 7));
+      if (i > 0)
+        A.set(i, i - 1, zero || i - 1 == zero_row ? 0.0 : -1.0);
+      if (i + 1 < N)
+        A.set(i, i + 1, zero || i + 1 == zero_row ? 0.0 : -1.5);
+    }
+    A.compress(VectorOperation::insert);
+  };
+  set_values(0.0);
+  SparseDirect lu;
+  lu.share_with(comm);
+  std::string message;
+  try
+  {
+    lu.factorize(A);
+  }
+  catch (const std::runtime_error &e)
+  {
+    message = e.what();
+  }
+  const int refused_here = message.empty() ? 0 : 1;
+  EXPECT_EQ(Utilities::MPI::min(refused_here, comm), 1) << "a rank took the singular matrix";
+  EXPECT_NE(message.find("singular"), std::string::npos) << message;
+  // the same pattern, now nonsingular: the ranks go on together
+  set_values(4.0);
+  lu.factorize(A);
+  TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
+  std::vector<double> b_all(N), x_all(N);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = b_all[i] = std::cos(0.01 * i);
+  lu.solve(b, x);
+  for (unsigned int i = 0; i < N; ++i)
+    x_all[i] = x[i];
+  EXPECT_LE(backward_error(A, x_all, b_all), 128 * std::numeric_limits<double>::epsilon() / 2);
+}
+
 // The split of numerics::SubstructuredLU on the pattern of Q2 elements on an nx x ny grid of
 // cells, nodes numbered row by row. Where a block boundary falls between the middle node row of a
 // row of cells and its top edge, the unknowns of the lower block coupled to the upper one are two
