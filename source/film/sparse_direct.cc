@@ -779,6 +779,9 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   support.erase(std::unique(support.begin(), support.end()), support.end());
   std::vector<double> entries; // (A0^-1)(columns[p], support[s]) at s * k + p
   const bool by_entries = k > 0 && lu.inverse_entries(columns, support, entries);
+  // (a shared factorisation has no selected entries: the block path, dear for many columns)
+  if (!by_entries && lu.substructured() && k > SparseDirect::max_shared_update_columns)
+    return LowRankSolve::too_many_columns;
   if (by_entries || k == 0)
   {
     lu.solve_block(y, 1);

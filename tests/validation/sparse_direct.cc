@@ -791,6 +791,64 @@ TEST(SparseDirect, SharedWholeMatrixOnSeveralRanksIsOneAnswer)
   }
 }
 
+// A low-rank update of a factorisation the ranks share: up to
+// SparseDirect::max_shared_update_columns changed columns it is solved, to the backward-error
+// bound the update promises; one more and it is left to a factorisation (too_many_columns, x
+// untouched), on every rank alike.
+TEST(SparseDirect, SharedLowRankUpdateOnSeveralRanksOfManyColumnsIsLeftToAFactorisation)
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  if (Utilities::MPI::n_mpi_processes(comm) < 2)
+    GTEST_SKIP() << "needs two ranks or more (ctest sparse_direct_band_on_{2,3}_ranks)";
+  const RestoreSubstructuredLimit restore;
+  SparseDirect::substructured_limit = SparseDirect::multifrontal_limit;
+  GridMatrix g(150); // 22 500 unknowns, whole on every rank
+  const unsigned int N = 150 * 150, K = SparseDirect::max_shared_update_columns + 1;
+  SparseDirect lu;
+  lu.share_with(comm);
+  lu.factorize(g.A);
+  ASSERT_TRUE(lu.substructured());
+  // K columns spread over the grid: the diagonal doubles, the off-diagonal entries halve
+  std::vector<unsigned int> columns;
+  for (unsigned int d = 0; d < K; ++d)
+    columns.push_back((d * 7919u + N / 3) % N);
+  std::sort(columns.begin(), columns.end());
+  ASSERT_EQ(std::unique(columns.begin(), columns.end()), columns.end());
+  std::vector<SparseColumn> U(K);
+  std::vector<std::vector<std::pair<unsigned int, double>>> old_column(K);
+  for (unsigned int d = 0; d < K; ++d)
+    for (const auto &[i, value] : g.row(columns[d])) // (the pattern is symmetric)
+    {
+      const unsigned int j = columns[d];
+      const double old_value = g.A.el(i, j), new_value = i == j ? 2 * old_value : 0.5 * old_value;
+      g.A.set(i, j, new_value);
+      U[d].emplace_back(i, new_value - old_value);
+      old_column[d].emplace_back(i, old_value);
+      (void)value;
+    }
+  g.A.compress(VectorOperation::insert);
+  std::vector<double> b(N), x(N, -7.0);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = std::sin(0.37 * i) + 0.5;
+  double rcond, eta;
+  EXPECT_EQ(solve_column_update(lu, g.A, columns, U, b.data(), x.data(), 1e-8, 0x1p-46, rcond, eta),
+            LowRankSolve::too_many_columns);
+  EXPECT_EQ(x, std::vector<double>(N, -7.0));
+  // the last column back as it was: K - 1 changed columns, solved
+  for (const auto &[i, value] : old_column[K - 1])
+    g.A.set(i, columns[K - 1], value);
+  g.A.compress(VectorOperation::insert);
+  columns.pop_back();
+  U.pop_back();
+  ASSERT_EQ(solve_column_update(lu, g.A, columns, U, b.data(), x.data(), 1e-8, 0x1p-46, rcond, eta),
+            LowRankSolve::solved);
+  EXPECT_LE(backward_error(g.A, x, b), 0x1p-46); // recomputed (other summation order)
+  std::vector<double> low(N), high(N);
+  MPI_Allreduce(x.data(), low.data(), N, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(x.data(), high.data(), N, MPI_DOUBLE, MPI_MAX, comm);
+  EXPECT_EQ(low, high) << "the ranks' solutions differ";
+}
+
 TEST(SparseDirect, RefactorisationOnSeveralRanksSolvesEachNewMatrix)
 {
   check_refactorisations_on_several_ranks(0);

@@ -38,6 +38,13 @@ public:
   /// A shared factorisation's answer with a larger normwise backward error is refused: the
   /// whole matrix is factorised and solved again (solve()).
   static constexpr double max_substructured_backward_error = 1e-12;
+  /// A low-rank update (solve_column_update) of a shared factorisation solves for its k + 1
+  /// columns by the shared block solve, whose MUMPS Schur condensation and expansion grow with
+  /// the columns: at 1.05e6 unknowns on two ranks 8 columns took 0.73 s, a third of a
+  /// factorisation (2.0-2.5 s), and 35 columns 10.2-10.4 s, four factorisations
+  /// (doc/performance.md "Session 28"). More changed columns than this are left to a
+  /// factorisation.
+  static constexpr unsigned int max_shared_update_columns = 7;
 
   SparseDirect();
   ~SparseDirect();
@@ -101,7 +108,9 @@ enum class LowRankSolve
 {
   solved,          // x is the solution, its backward error within the bound
   ill_conditioned, // the capacitance matrix is (nearly) singular: x not set
-  inaccurate       // the residual check failed: x not set
+  inaccurate,      // the residual check failed: x not set
+  too_many_columns // a shared factorisation and more than SparseDirect::max_shared_update_columns
+                   // columns: not tried (a factorisation costs less), x not set
 };
 
 /// A sparse column: (row, value) pairs.
@@ -119,6 +128,9 @@ using SparseColumn = std::vector<std::pair<unsigned int, double>>;
 /// as `matrix`), |b - A1 x|_inf /
 /// (|A1|_inf |x|_inf + |b|_inf), is at most `max_backward_error` (else inaccurate). One rank; b, x:
 /// the n values in order. `rcond`, `backward_error`: what was found (NaN where not computed).
+/// A factorisation shared by the ranks (substructured()) takes the block path, collective over
+/// its team, and is not tried beyond SparseDirect::max_shared_update_columns columns
+/// (too_many_columns).
 LowRankSolve solve_column_update(SparseDirect &lu,
                                  const dealii::TrilinosWrappers::SparseMatrix &matrix,
                                  const std::vector<unsigned int> &columns,
