@@ -678,12 +678,13 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
   if (shared)
   {
     // A part that MUMPS could not factorise inside (a zero pivot coupled only to separator
-    // unknowns, which may not be pivots) can come back as a factorisation without an error and
-    // a wrong answer (measured: backward error 1e-2, SparseDirect.SingularPartOnSeveralRanks...),
-    // so every answer is checked: backward-stable solves of these matrices measure 7e-19 to
-    // 4e-17, and one above 1e-12 is refactorised whole and solved again (on every rank: the
-    // error is the same on all)
-    // (a NaN error fails the comparison too)
+    // unknowns, which may not be pivots) came back as a factorisation without an error and a
+    // wrong answer (measured: backward error 1e-2, SparseDirect.SingularPartOnSeveralRanks...)
+    // before the parts counted their null and replaced pivots (numerics::SubstructuredLU); a
+    // case those counts miss would still show here, so every answer is checked: backward-stable
+    // solves of these matrices measure 7e-19 to 4e-17, and one above 1e-12 is refactorised whole
+    // and solved again (on every rank: the error is the same on all) (a NaN error fails the
+    // comparison too)
     if (shared->solve(*pattern_owner, b.trilinos_vector(), x.trilinos_vector()) <=
         max_substructured_backward_error)
       return;
@@ -694,6 +695,9 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
     mumps->solve(b.trilinos_vector(), x.trilinos_vector());
     return;
   }
+  // (a factorisation that threw, its analysis included, leaves no solver)
+  if (!solver)
+    throw std::logic_error("SparseDirect::solve: no factorisation");
   problem->SetLHS(&x.trilinos_vector());
   problem->SetRHS(const_cast<Epetra_MultiVector *>(
       static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));

@@ -385,12 +385,19 @@ SubstructuredLU::split(const int n, const std::vector<int> &row, const std::vect
   id.icntl[7] = 7;
   id.icntl[13] = 20;
   id.icntl[18] = 3;
-  // Null pivots detected and counted (ICNTL(24) = 1, INFOG(28)), refused in factorize(): without
-  // it a part with an exactly zero pivot came back from MUMPS without an error, and the shared
-  // solve of a singular matrix gave 4.5e15 with a backward error small enough to pass the check
-  // (SparseDirect.SingularMatrixSharedOnSeveralRanksIsRefusedOnEveryRank), where one rank's
-  // MUMPS of the whole matrix says it is singular. The threshold (CNTL(3) = 0: MUMPS's default,
-  // relative to the matrix's norm) flags only pivots at round-off level.
+  // Null pivots detected and counted (ICNTL(24) = 1, INFOG(28)), refused in factorize(). A front
+  // whose parent is the Schur complement may not delay a pivot to it: MUMPS then takes the pivot
+  // it has, and one below u in size is replaced by +-u and only counted (INFOG(25)). So a part
+  // with an exactly zero pivot came back without an error, and the shared solve of a singular
+  // matrix gave 4.5e15 (b / u) for that unknown, with a normwise backward error small enough to
+  // pass SparseDirect's check because |x| is that large
+  // (SparseDirect.SingularMatrixSharedOnSeveralRanksIsRefusedOnEveryRank), where one rank's MUMPS
+  // of the whole matrix says it is singular. A row and column whose entries outside the
+  // separator are all below MUMPS's threshold (CNTL(3) = 0: u sqrt(depth of the tree) times the
+  // norm of the scaled matrix) are counted as null; that includes an interior unknown coupled
+  // only to separator unknowns (SparseDirect.SingularPartOnSeveralRanks...), a part singular where
+  // the whole matrix need not be. Either count refuses the part; SparseDirect then factorises the
+  // whole matrix.
   id.icntl[23] = 1;
   id.n = p->n_local;
   id.nnz = static_cast<MUMPS_INT8>(p->local_row.size());
@@ -432,9 +439,11 @@ void SubstructuredLU::factorize(const double *values)
           id.icntl[13] *= 2;
           ++p.retries;
         }
-        // a null pivot (INFOG(28)): this part, or the whole matrix, is singular (MUMPS's
-        // "numerically singular", -10; SparseDirect then tries the whole matrix)
-        if (id.infog[0] >= 0 && id.infog[27] > 0)
+        // a null pivot (INFOG(28)) or a pivot replaced by +-u (INFOG(25); static pivoting is
+        // off, so these are the pivots a front next to the separator could not delay): this part,
+        // or the whole matrix, is singular (MUMPS's "numerically singular", -10; SparseDirect
+        // then tries the whole matrix)
+        if (id.infog[0] >= 0 && (id.infog[27] > 0 || id.infog[24] > 0))
           return -10;
         return id.infog[0];
       });

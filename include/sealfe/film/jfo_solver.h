@@ -114,7 +114,8 @@ private:
   /// (set_a, set_v)) by a Sherman-Morrison-Woodbury update of the factorisation of an earlier
   /// global round, whose Jacobian differs in the columns of the nodes that changed set since
   /// (solve_column_update); false (nothing done) when there is no such factorisation, more than
-  /// low_rank_limit columns changed, or the update is refused (near-singular, or its backward
+  /// low_rank_limit columns changed (more than SparseDirect::max_shared_update_columns where the
+  /// ranks share the factorisation), or the update is refused (near-singular, or its backward
   /// error above the bound).
   bool low_rank_solve(const VectorType &set_a, const VectorType &set_v);
   /// With SEALFE_JFO_KRYLOV_PROBE (one rank): the global round's system just solved directly (w)

@@ -42,8 +42,10 @@ public:
   /// columns by the shared block solve, whose MUMPS Schur condensation and expansion grow with
   /// the columns: at 1.05e6 unknowns on two ranks 8 columns took 0.73 s, a third of a
   /// factorisation (2.0-2.5 s), and 35 columns 10.2-10.4 s, four factorisations
-  /// (doc/performance.md "Session 28"). More changed columns than this are left to a
-  /// factorisation.
+  /// (doc/performance.md "Session 28"). A guard at the largest measured case that paid (k = 7):
+  /// more changed columns are left to a factorisation. Where between 8 and 35 columns the update
+  /// stops paying was not measured, nor the ratio at the sizes that reach this path (the coarse
+  /// levels that every rank holds whole; a distributed level makes no low-rank update).
   static constexpr unsigned int max_shared_update_columns = 7;
 
   SparseDirect();
@@ -110,7 +112,7 @@ enum class LowRankSolve
   ill_conditioned, // the capacitance matrix is (nearly) singular: x not set
   inaccurate,      // the residual check failed: x not set
   too_many_columns // a shared factorisation and more than SparseDirect::max_shared_update_columns
-                   // columns: not tried (a factorisation costs less), x not set
+                   // columns: not tried (the guard against its block solve), x not set
 };
 
 /// A sparse column: (row, value) pairs.
