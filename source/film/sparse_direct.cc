@@ -675,6 +675,9 @@ void SparseDirect::factorize_whole(const Epetra_CrsMatrix &A)
 void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
                          dealii::TrilinosWrappers::MPI::Vector &x)
 {
+  // (a factorisation whose analysis threw leaves none)
+  if (!initialized())
+    throw std::logic_error("SparseDirect::solve: no factorisation");
   if (shared)
   {
     // A part that MUMPS could not factorise inside (a zero pivot coupled only to separator
@@ -695,9 +698,6 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
     mumps->solve(b.trilinos_vector(), x.trilinos_vector());
     return;
   }
-  // (a factorisation that threw, its analysis included, leaves no solver)
-  if (!solver)
-    throw std::logic_error("SparseDirect::solve: no factorisation");
   problem->SetLHS(&x.trilinos_vector());
   problem->SetRHS(const_cast<Epetra_MultiVector *>(
       static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
@@ -707,6 +707,8 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
 
 void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
 {
+  if (!initialized())
+    throw std::logic_error("SparseDirect::solve_block: no factorisation");
   const Epetra_CrsMatrix &A = *pattern_owner;
   const int n = A.NumMyRows();
   if (A.Comm().NumProc() != 1 || X.size() != static_cast<std::size_t>(n) * m)
@@ -769,6 +771,10 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   const std::size_t n = matrix.m(), k = columns.size();
   if (U.size() != k)
     throw std::logic_error("solve_column_update: U must hold k columns");
+  // (a shared factorisation has no selected entries of its inverse: the block path, dear for
+  // many columns)
+  if (lu.substructured() && k > SparseDirect::max_shared_update_columns)
+    return LowRankSolve::too_many_columns;
   // y = A0^-1 b and EZ = E^T A0^-1 U (k x k, column-major)
   std::vector<double> y(b, b + n), EZ(k * k, 0.0), X;
   std::vector<unsigned int> support; // rows where U has entries, ascending
@@ -783,9 +789,6 @@ LowRankSolve solve_column_update(SparseDirect &lu,
   support.erase(std::unique(support.begin(), support.end()), support.end());
   std::vector<double> entries; // (A0^-1)(columns[p], support[s]) at s * k + p
   const bool by_entries = k > 0 && lu.inverse_entries(columns, support, entries);
-  // (a shared factorisation has no selected entries: the block path, dear for many columns)
-  if (!by_entries && lu.substructured() && k > SparseDirect::max_shared_update_columns)
-    return LowRankSolve::too_many_columns;
   if (by_entries || k == 0)
   {
     lu.solve_block(y, 1);

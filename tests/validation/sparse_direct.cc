@@ -232,6 +232,40 @@ std::pair<double, double> two_solve_difference(const GridMatrix &g, const std::v
           (eta_x * (A_norm * x_max + b_max) + eta_y * (A_norm * y_max + b_max)) / g.sigma};
 }
 
+/// k columns of g's matrix spread over the grid, changed as a JFO node changing set would: the
+/// diagonal doubles and the off-diagonal entries halve (every row stays dominant by sigma, so
+/// Varah's bound |A1^-1|_inf <= 1 / sigma holds for the changed matrix too). `columns` ascending,
+/// without repeats; U their differences A1 - A0 and `old` their entries before, by column.
+struct ChangedColumns
+{
+  std::vector<unsigned int> columns;
+  std::vector<SparseColumn> U, old;
+
+  ChangedColumns(GridMatrix &g, const unsigned int k)
+  {
+    const unsigned int N = g.m * g.m;
+    for (unsigned int d = 0; d < k; ++d)
+      columns.push_back((d * 7919u + N / 3) % N);
+    std::sort(columns.begin(), columns.end());
+    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+    U.resize(columns.size());
+    old.resize(columns.size());
+    for (unsigned int d = 0; d < columns.size(); ++d)
+    {
+      const unsigned int j = columns[d];
+      for (const auto &[i, value] : g.row(j)) // the column's entries (the pattern is symmetric)
+      {
+        const double old_value = g.A.el(i, j), new_value = i == j ? 2 * old_value : 0.5 * old_value;
+        g.A.set(i, j, new_value);
+        U[d].emplace_back(i, new_value - old_value);
+        old[d].emplace_back(i, old_value);
+        (void)value;
+      }
+    }
+    g.A.compress(VectorOperation::insert);
+  }
+};
+
 void check_update(const unsigned int m, const unsigned int k, const char *package)
 {
   GridMatrix g(m);
@@ -239,28 +273,10 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
   SparseDirect lu;
   lu.factorize(g.A);
   ASSERT_STREQ(lu.package_name(), package);
-  // k columns spread over the grid change as a JFO node changing set would: here the diagonal
-  // doubles and the off-diagonal entries halve (every row stays dominant by sigma, so Varah's
-  // bound |A1^-1|_inf <= 1 / sigma holds for the changed matrix too)
-  std::vector<unsigned int> columns;
-  for (unsigned int d = 0; d < k; ++d)
-    columns.push_back((d * 7919u + N / 3) % N);
-  std::sort(columns.begin(), columns.end());
-  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  const ChangedColumns changed(g, k);
+  const std::vector<unsigned int> &columns = changed.columns;
+  const std::vector<SparseColumn> &U = changed.U;
   const unsigned int K = columns.size();
-  std::vector<SparseColumn> U(K);
-  for (unsigned int d = 0; d < K; ++d)
-  {
-    const unsigned int j = columns[d];
-    for (const auto &[i, value] : g.row(j)) // the column's entries (the pattern is symmetric)
-    {
-      const double old_value = g.A.el(i, j), new_value = i == j ? 2 * old_value : 0.5 * old_value;
-      g.A.set(i, j, new_value);
-      U[d].emplace_back(i, new_value - old_value);
-      (void)value;
-    }
-  }
-  g.A.compress(VectorOperation::insert);
   std::vector<double> b(N), x(N, 0.0);
   for (unsigned int i = 0; i < N; ++i)
     b[i] = std::sin(0.37 * i) + 0.5;
@@ -813,25 +829,10 @@ TEST(SparseDirect, SharedLowRankUpdateOnSeveralRanksOfManyColumnsIsLeftToAFactor
     ADD_FAILURE() << "the factorisation is not shared";
     return;
   }
-  // K columns spread over the grid: the diagonal doubles, the off-diagonal entries halve
-  std::vector<unsigned int> columns;
-  for (unsigned int d = 0; d < K; ++d)
-    columns.push_back((d * 7919u + N / 3) % N);
-  std::sort(columns.begin(), columns.end());
-  ASSERT_EQ(std::unique(columns.begin(), columns.end()), columns.end());
-  std::vector<SparseColumn> U(K);
-  std::vector<std::vector<std::pair<unsigned int, double>>> old_column(K);
-  for (unsigned int d = 0; d < K; ++d)
-    for (const auto &[i, value] : g.row(columns[d])) // (the pattern is symmetric)
-    {
-      const unsigned int j = columns[d];
-      const double old_value = g.A.el(i, j), new_value = i == j ? 2 * old_value : 0.5 * old_value;
-      g.A.set(i, j, new_value);
-      U[d].emplace_back(i, new_value - old_value);
-      old_column[d].emplace_back(i, old_value);
-      (void)value;
-    }
-  g.A.compress(VectorOperation::insert);
+  ChangedColumns changed(g, K);
+  ASSERT_EQ(changed.columns.size(), K);
+  std::vector<unsigned int> &columns = changed.columns;
+  std::vector<SparseColumn> &U = changed.U;
   std::vector<double> b(N), x(N, -7.0);
   for (unsigned int i = 0; i < N; ++i)
     b[i] = std::sin(0.37 * i) + 0.5;
@@ -840,7 +841,7 @@ TEST(SparseDirect, SharedLowRankUpdateOnSeveralRanksOfManyColumnsIsLeftToAFactor
             LowRankSolve::too_many_columns);
   EXPECT_EQ(x, std::vector<double>(N, -7.0));
   // the last column back as it was: K - 1 changed columns, solved
-  for (const auto &[i, value] : old_column[K - 1])
+  for (const auto &[i, value] : changed.old[K - 1])
     g.A.set(i, columns[K - 1], value);
   g.A.compress(VectorOperation::insert);
   columns.pop_back();
