@@ -33,7 +33,27 @@ FilmLinearSolver::Statistics &FilmLinearSolver::Statistics::operator+=(const Sta
   reused_preconditioners += other.reused_preconditioners;
   workspace_retries += other.workspace_retries;
   substructured_factorizations += other.substructured_factorizations;
+  single_precision_factorizations += other.single_precision_factorizations;
+  refinement_steps += other.refinement_steps;
+  refinement_fallbacks += other.refinement_fallbacks;
   return *this;
+}
+
+FilmLinearSolver::Statistics FilmLinearSolver::statistics() const
+{
+  // the factorisation's own counts: its solves are also made by low-rank updates that go to it
+  // directly (factorization())
+  Statistics counted = stats;
+  counted.refinement_steps = direct.refinement_steps() - refinement_steps_before;
+  counted.refinement_fallbacks = direct.refinement_fallbacks() - refinement_fallbacks_before;
+  return counted;
+}
+
+void FilmLinearSolver::reset_statistics()
+{
+  stats = Statistics();
+  refinement_steps_before = direct.refinement_steps();
+  refinement_fallbacks_before = direct.refinement_fallbacks();
 }
 
 const char *FilmLinearSolver::method_name() const
@@ -159,6 +179,7 @@ void FilmLinearSolver::build_preconditioner()
     stats.symbolic_reuses += direct.numeric_only() - before;
     stats.workspace_retries += direct.workspace_retries() - retries_before;
     stats.substructured_factorizations += direct.substructured();
+    stats.single_precision_factorizations += direct.single_precision();
     return;
   }
   direct.clear();

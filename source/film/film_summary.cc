@@ -264,7 +264,10 @@ nlohmann::json linear_solver_summary(const FilmLinearSolver::Statistics &statist
           {"symbolic_reuses", statistics.symbolic_reuses},
           {"reused_preconditioners", statistics.reused_preconditioners},
           {"workspace_retries", statistics.workspace_retries},
-          {"substructured_factorizations", statistics.substructured_factorizations}};
+          {"substructured_factorizations", statistics.substructured_factorizations},
+          {"single_precision_factorizations", statistics.single_precision_factorizations},
+          {"refinement_steps", statistics.refinement_steps},
+          {"refinement_fallbacks", statistics.refinement_fallbacks}};
 }
 
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,

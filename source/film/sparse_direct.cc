@@ -14,9 +14,14 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_Map.h>
 #include <Epetra_MpiComm.h>
+#include <Epetra_Vector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <dmumps_c.h>
 #include <mpi.h>
+#include <smumps_c.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +29,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace sealfe
 {
@@ -80,9 +86,10 @@ double *values_in_storage_order(const Epetra_CrsMatrix &A, const std::size_t ent
 
 /// The normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf) of x for A, b and x
 /// whole on this rank (n values each, by global index); A's rows this rank's, their residuals'
-/// largest taken over `comm` (collective there). NaN if x is.
+/// largest taken over `comm` (collective there). NaN if x is. `residual` (one rank, n values, or
+/// null): b - A x.
 double backward_error_of(const Epetra_CrsMatrix &A, const double *b, const double *x,
-                         const std::size_t n, const MPI_Comm comm)
+                         const std::size_t n, const MPI_Comm comm, double *residual = nullptr)
 {
   std::vector<double> x_column(A.NumMyCols()); // x by local column index
   for (int c = 0; c < A.NumMyCols(); ++c)
@@ -94,10 +101,13 @@ double backward_error_of(const Epetra_CrsMatrix &A, const double *b, const doubl
     double *values;
     int *columns;
     A.ExtractMyRowView(row, entries, values, columns);
-    double r = b[A.RowMap().GID64(row)];
+    const long long global_row = A.RowMap().GID64(row);
+    double r = b[global_row];
     for (int e = 0; e < entries; ++e)
       r -= values[e] * x_column[columns[e]];
     r_max = std::max(r_max, std::abs(r));
+    if (residual)
+      residual[global_row] = r;
   }
   const int ierr = MPI_Allreduce(MPI_IN_PLACE, &r_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   AssertThrowMPI(ierr);
@@ -109,6 +119,49 @@ double backward_error_of(const Epetra_CrsMatrix &A, const double *b, const doubl
   const double scale = A.NormInf() * x_max + b_max;
   return scale > 0 ? r_max / scale : 0.0;
 }
+
+/// Denormal floats flushed to zero (and read as zero) while this lives, the caller's mode
+/// restored after. Single-precision MUMPS needs it on these matrices: without it its sgemm ran
+/// 10x slower on the subnormal numbers of the fronts' Schur complements (7.4-9.2 s against
+/// 1.4-1.7 s for one factorisation at 5.3e5 unknowns; doc/performance.md "Session 18").
+class SubnormalsFlushed
+{
+public:
+#if defined(__SSE__)
+  SubnormalsFlushed() : saved(_mm_getcsr())
+  {
+    _mm_setcsr(saved | 0x8040);
+  } // FTZ | DAZ
+  ~SubnormalsFlushed()
+  {
+    _mm_setcsr(saved);
+  }
+
+private:
+  unsigned int saved;
+#endif
+};
+
+/// MUMPS's C interface in double (dmumps) or single (smumps) precision: the same structure with
+/// the type of the values.
+template <class Real>
+struct MumpsArithmetic;
+template <>
+struct MumpsArithmetic<double>
+{
+  using Instance = DMUMPS_STRUC_C;
+  static void call(Instance &id) { dmumps_c(&id); }
+};
+template <>
+struct MumpsArithmetic<float>
+{
+  using Instance = SMUMPS_STRUC_C;
+  static void call(Instance &id)
+  {
+    const SubnormalsFlushed flushed;
+    smumps_c(&id);
+  }
+};
 } // namespace
 
 /// MUMPS driven directly through its C interface. Amesos_Mumps, used before, converted the matrix
@@ -120,9 +173,14 @@ double backward_error_of(const Epetra_CrsMatrix &A, const double *b, const doubl
 /// several ranks both are gathered on the host (MPI_Gatherv), in the same order. The MUMPS
 /// settings are those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic
 /// column permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
-/// SparseDirect::initial_workspace_margin).
+/// SparseDirect::initial_workspace_margin). `Real` float: the factors in single precision, one
+/// rank only (SparseDirect::single_precision_limit), the solves those of the single factors
+/// (SparseDirect refines them).
+template <class Real>
 class SparseDirect::Mumps
 {
+  static constexpr bool in_double = std::is_same_v<Real, double>;
+
 public:
   /// A MUMPS instance on A's communicator. Collective.
   explicit Mumps(const Epetra_CrsMatrix &A)
@@ -133,11 +191,13 @@ public:
       throw std::runtime_error("Reynolds solver: the matrix is too large for MUMPS's indices");
     if (!several_ranks && !(A.RowMap().LinearMap() && A.RowMap().MinAllGID64() == 0))
       throw std::logic_error("SparseDirect: one rank needs the rows in order from 0");
+    if (!in_double && several_ranks)
+      throw std::logic_error("SparseDirect: single-precision factors on one rank only");
     id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
     id.par = 1; // the host works too
     id.sym = 0; // unsymmetric
     id.job = -1;
-    dmumps_c(&id);
+    MumpsArithmetic<Real>::call(id);
     check("initialisation");
     for (const int stream : {0, 1, 2, 3})
       id.icntl[stream] = -1; // no messages: errors come back as INFOG(1) and are thrown
@@ -220,7 +280,7 @@ public:
       id.jcn = column.data();
     }
     id.job = 1;
-    dmumps_c(&id);
+    MumpsArithmetic<Real>::call(id);
     // (MUMPS reads the rows and columns again at every factorisation: `row` and `column` live as
     // long as this instance)
     check("analysis");
@@ -229,7 +289,7 @@ public:
   ~Mumps()
   {
     id.job = -2;
-    dmumps_c(&id);
+    MumpsArithmetic<Real>::call(id);
   }
 
   Mumps(const Mumps &) = delete;
@@ -242,7 +302,13 @@ public:
     // the matrix's own array, in the order the analysis read the indices in (checked on every
     // rank before the collective call)
     double *storage = values_in_storage_order(A, row_entries, comm);
-    if (several_ranks)
+    if constexpr (!in_double)
+    {
+      // rounded to single precision for this call only
+      single_values.assign(storage, storage + row_entries);
+      id.a = single_values.data();
+    }
+    else if (several_ranks)
     {
       // the values to the host, in the order of the structure gathered there
       const int ierr =
@@ -262,7 +328,7 @@ public:
     for (int attempt = 0;; ++attempt)
     {
       id.job = 2;
-      dmumps_c(&id);
+      MumpsArithmetic<Real>::call(id);
       short_of_workspace = id.infog[0] == -8 || id.infog[0] == -9;
       if (!short_of_workspace || attempt == max_workspace_retries)
         break;
@@ -270,6 +336,7 @@ public:
       ++workspace_retries;
     }
     id.a = nullptr;
+    single_values = std::vector<float>(); // (freed: MUMPS keeps its own copy in its factors)
     if (short_of_workspace)
       throw std::runtime_error(
           "Reynolds solver: MUMPS factorisation ran out of workspace even with " +
@@ -295,16 +362,18 @@ public:
       {
         if (x[j] != b[j])
           std::copy(b[j], b[j] + b.MyLength(), x[j]);
-        solve_phase([&](DMUMPS_STRUC_C &s) { s.rhs = x[j]; }, "solve");
+        solve_block(x[j], 1);
       }
       return;
     }
+    if constexpr (!in_double)
+      throw std::logic_error("SparseDirect: single-precision factors on one rank only");
     // the columns gathered on the host, solved there in one call, and the solution sent back
     Epetra_MultiVector on_host(*host_map, b.NumVectors());
     if (on_host.Import(b, *to_host, Insert) != 0)
       throw std::runtime_error("Reynolds solver: gathering the right-hand side for MUMPS failed");
     solve_phase(
-        [&](DMUMPS_STRUC_C &s)
+        [&](Instance &s)
         {
           s.nrhs = b.NumVectors();
           s.lrhs = id.n;
@@ -315,17 +384,29 @@ public:
       throw std::runtime_error("Reynolds solver: scattering the MUMPS solution failed");
   }
 
-  /// The n x m column-major block X overwritten by A^-1 X (one rank).
+  /// The n x m column-major block X overwritten by A^-1 X (one rank); in single precision by
+  /// the single factors, X rounded to single precision and back.
   void solve_block(double *X, const int m)
   {
+    Real *rhs = nullptr;
+    std::vector<float> rounded;
+    if constexpr (in_double)
+      rhs = X;
+    else
+    {
+      rounded.assign(X, X + std::size_t(id.n) * m);
+      rhs = rounded.data();
+    }
     solve_phase(
-        [&](DMUMPS_STRUC_C &s)
+        [&](Instance &s)
         {
           s.nrhs = m;
           s.lrhs = id.n;
-          s.rhs = X;
+          s.rhs = rhs;
         },
         "block solve");
+    if constexpr (!in_double)
+      std::copy(rounded.begin(), rounded.end(), X);
   }
 
   /// values[c * rows.size() + p] = (A^-1)(rows[p], columns[c]), columns ascending (one rank).
@@ -351,9 +432,9 @@ public:
     column_start[n] = int(entry_row.size()) + 1;
     if (next != columns.size())
       throw std::logic_error("SparseDirect: inverse entries' columns not ascending or repeated");
-    values.assign(entry_row.size(), 0.0);
+    std::vector<Real> entries(entry_row.size(), Real(0));
     solve_phase(
-        [&](DMUMPS_STRUC_C &s)
+        [&](Instance &s)
         {
           s.icntl[29] = 1; // selected entries of A^-1 (ICNTL(30))
           // right-hand-side columns per block of the pruned solves (ICNTL(27); MUMPS's default
@@ -366,9 +447,10 @@ public:
           s.lrhs = n;
           s.irhs_ptr = column_start.data();
           s.irhs_sparse = entry_row.data();
-          s.rhs_sparse = values.data();
+          s.rhs_sparse = entries.data();
         },
         "selected inverse entries");
+    values.assign(entries.begin(), entries.end());
   }
 
 private:
@@ -377,10 +459,10 @@ private:
   template <class SetRhs>
   void solve_phase(SetRhs &&set_rhs, const char *what)
   {
-    const DMUMPS_STRUC_C saved = id;
+    const Instance saved = id;
     set_rhs(id);
     id.job = 3;
-    dmumps_c(&id);
+    MumpsArithmetic<Real>::call(id);
     const int status = id.infog[0], detail = id.infog[1];
     id.icntl[26] = saved.icntl[26];
     id.icntl[29] = saved.icntl[29];
@@ -408,9 +490,11 @@ private:
                              ", INFOG(2) = " + std::to_string(detail) + ")");
   }
 
+  using Instance = typename MumpsArithmetic<Real>::Instance;
   bool several_ranks;
   MPI_Comm comm; // A's, for the gathers on the host
-  DMUMPS_STRUC_C id{};
+  Instance id{};
+  std::vector<float> single_values; // single precision: the values during the factorisation
   // 1-based global indices of the entries: one rank its own; several ranks the whole matrix's
   // on the host (empty on the others)
   std::vector<int> row, column;
@@ -557,16 +641,19 @@ void SparseDirect::share_with(const MPI_Comm team_in)
 unsigned int SparseDirect::workspace_retries() const
 {
   return retried_workspace + (mumps ? mumps->workspace_retries : 0) +
-         (shared ? shared->workspace_retries() : 0);
+         (single ? single->workspace_retries : 0) + (shared ? shared->workspace_retries() : 0);
 }
 
 void SparseDirect::clear()
 {
   if (mumps)
     retried_workspace += mumps->workspace_retries;
+  if (single)
+    retried_workspace += single->workspace_retries;
   if (shared)
     retried_workspace += shared->workspace_retries();
   mumps.reset();
+  single.reset();
   shared.reset();
   solver.reset();
   problem.reset();
@@ -612,10 +699,18 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     {
       // (analysed by its constructor)
     }
+    else if (package == std::string("MUMPS") && A.Comm().NumProc() == 1 &&
+             A.NumGlobalRows64() >= single_precision_limit)
+    {
+      auto analysed = std::make_unique<Mumps<float>>(A);
+      analysed->analyse(A);
+      single = std::move(analysed);
+      package = "MUMPS, single precision refined";
+    }
     else if (package == std::string("MUMPS"))
     {
       // kept only once analysed: a SparseDirect whose analysis failed holds no factorisation
-      auto analysed = std::make_unique<Mumps>(A);
+      auto analysed = std::make_unique<Mumps<double>>(A);
       analysed->analyse(A);
       mumps = std::move(analysed);
     }
@@ -653,6 +748,22 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
       return;
     }
   }
+  if (single)
+  {
+    try
+    {
+      single->factorize(A);
+      factors_norm = A.NormInf();
+      return;
+    }
+    catch (const std::runtime_error &failure)
+    {
+      // singular in single precision (values below its range flushed to zero, say) or short of
+      // workspace: the double factorisation decides, and the pattern stays with it
+      factorize_in_double(A);
+      return;
+    }
+  }
   if (mumps)
     mumps->factorize(A);
   else if (solver->NumericFactorization() != 0)
@@ -665,11 +776,57 @@ void SparseDirect::factorize_whole(const Epetra_CrsMatrix &A)
   // on every rank (SparseDirect::Mumps); this pattern stays with it
   retried_workspace += shared->workspace_retries();
   shared.reset();
+  factorize_in_double(A);
+}
+
+void SparseDirect::factorize_in_double(const Epetra_CrsMatrix &A)
+{
+  if (single)
+  {
+    retried_workspace += single->workspace_retries;
+    ++fallback_count;
+  }
+  single.reset();
   package = "MUMPS";
-  auto analysed = std::make_unique<Mumps>(A);
+  auto analysed = std::make_unique<Mumps<double>>(A);
   analysed->analyse(A);
   mumps = std::move(analysed);
   mumps->factorize(A);
+}
+
+double SparseDirect::refined_solve(const Epetra_Vector &b, Epetra_Vector &x)
+{
+  // Mixed-precision iterative refinement: x from the single factors, then x += S^-1 (b - A x)
+  // with the residual in double, until the normwise backward error is below
+  // refined_backward_error or stops halving. Each step gains about log10(1 / (c kappa 2^-24))
+  // digits; the tilted seal's JFO Jacobian at 1.05e6 unknowns: 1.4e-10 from the single factors
+  // (MUMPS's scaling), 2.6e-15 after one step (doc/performance.md "Session 30").
+  const Epetra_CrsMatrix &A = *pattern_owner;
+  const int n = A.NumMyRows();
+  if (b.MyLength() != n || x.MyLength() != n)
+    throw std::logic_error("SparseDirect::solve: b and x must have the matrix's rows");
+  std::copy(b.Values(), b.Values() + n, x.Values());
+  single->solve_block(x.Values(), 1);
+  Epetra_Vector r(A.RangeMap());
+  double error = std::numeric_limits<double>::infinity();
+  for (unsigned int step = 0;; ++step)
+  {
+    A.Multiply(false, x, r);
+    r.Update(1.0, b, -1.0); // r = b - A x
+    double r_max, x_max, b_max;
+    r.NormInf(&r_max);
+    x.NormInf(&x_max);
+    b.NormInf(&b_max);
+    const double scale = factors_norm * x_max + b_max;
+    const double previous = error;
+    error = scale > 0 ? r_max / scale : 0.0;
+    if (!(error > refined_backward_error) || !(error < 0.5 * previous) ||
+        step == max_refinement_steps)
+      return error;
+    single->solve_block(r.Values(), 1);
+    x.Update(1.0, r, 1.0);
+    ++refinement_count;
+  }
 }
 
 void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
@@ -692,6 +849,14 @@ void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
         max_substructured_backward_error)
       return;
     factorize_whole(*pattern_owner);
+  }
+  if (single)
+  {
+    // (a NaN error fails the comparison too)
+    if (refined_solve(*b.trilinos_vector()(0), *x.trilinos_vector()(0)) <= refined_backward_error)
+      return;
+    // the single factors too far from A (its condition near 2^24): A in double instead
+    factorize_in_double(*pattern_owner);
   }
   if (mumps)
   {
@@ -723,6 +888,11 @@ void SparseDirect::solve_block(std::vector<double> &X, const unsigned int m)
     mumps->solve_block(X.data(), m);
     return;
   }
+  if (single)
+  {
+    single->solve_block(X.data(), m);
+    return;
+  }
   // KLU: one klu_solve for the whole multivector
   const std::vector<double> B(X);
   Epetra_MultiVector x(View, A.OperatorDomainMap(), X.data(), n, m),
@@ -740,7 +910,7 @@ bool SparseDirect::inverse_entries(const std::vector<unsigned int> &rows,
                                    const std::vector<unsigned int> &columns,
                                    std::vector<double> &values)
 {
-  if (!mumps || pattern_owner->Comm().NumProc() != 1)
+  if ((!mumps && !single) || pattern_owner->Comm().NumProc() != 1)
     return false;
   // MUMPS takes the columns in order: sort them, and put the values back in the caller's order
   std::vector<unsigned int> order(columns.size());
@@ -751,7 +921,10 @@ bool SparseDirect::inverse_entries(const std::vector<unsigned int> &rows,
   for (std::size_t c = 0; c < order.size(); ++c)
     sorted[c] = columns[order[c]];
   std::vector<double> sorted_values;
-  mumps->inverse_entries(rows, sorted, sorted_values);
+  if (mumps)
+    mumps->inverse_entries(rows, sorted, sorted_values);
+  else
+    single->inverse_entries(rows, sorted, sorted_values);
   const std::size_t m = rows.size();
   values.resize(m * columns.size());
   for (std::size_t c = 0; c < order.size(); ++c)
@@ -884,7 +1057,48 @@ LowRankSolve solve_column_update(SparseDirect &lu,
     }
   }
   // the true residual of A1: the update is exact algebra, its round-off is checked here
-  backward_error = backward_error_of(matrix.trilinos_matrix(), b, result.data(), n, MPI_COMM_SELF);
+  std::vector<double> residual(lu.single_precision() ? n : 0);
+  backward_error = backward_error_of(matrix.trilinos_matrix(), b, result.data(), n, MPI_COMM_SELF,
+                                     residual.empty() ? nullptr : residual.data());
+  if (lu.single_precision())
+  {
+    // Single factors: C and the solves are single-precision accurate, so the update formula is
+    // applied to the residual of A1 (in double) until the backward error is below
+    // refined_backward_error or stops halving, as SparseDirect::solve refines. Each step: two
+    // solves with the single factors, C's factors reused (tilted seal, 1.05e6 unknowns, 50
+    // columns: 2.7e-7 from the formula, then 1.2e-11, 2.7e-16).
+    for (unsigned int step = 0; backward_error > SparseDirect::refined_backward_error &&
+                                step < SparseDirect::max_refinement_steps;
+         ++step)
+    {
+      // correction = A0^-1 (r - U C^-1 E^T A0^-1 r)
+      dealii::Vector<double> s(k);
+      std::vector<double> correction(residual);
+      if (k > 0)
+      {
+        lu.solve_block(correction, 1);
+        for (std::size_t p = 0; p < k; ++p)
+          s(p) = correction[columns[p]];
+        C.solve(s);
+        correction = residual;
+      }
+      for (std::size_t q = 0; q < k; ++q)
+        for (const auto &[i, value] : U[q])
+          correction[i] -= value * s(q);
+      lu.solve_block(correction, 1);
+      std::vector<double> refined(result);
+      for (std::size_t i = 0; i < n; ++i)
+        refined[i] += correction[i];
+      const double previous = backward_error;
+      const double error = backward_error_of(matrix.trilinos_matrix(), b, refined.data(), n,
+                                             MPI_COMM_SELF, residual.data());
+      ++lu.refinement_count;
+      if (!(error < 0.5 * previous))
+        break; // (stagnated: the last iterate kept)
+      result.swap(refined);
+      backward_error = error;
+    }
+  }
   if (!(backward_error <= max_backward_error))
     return LowRankSolve::inaccurate;
   std::copy(result.begin(), result.end(), x);

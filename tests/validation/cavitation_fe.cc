@@ -9,6 +9,7 @@
 //  - the global P A and G equal deal.II's assembly of the cell matrices entry by entry, and the
 //    Jacobian at the solution by their columns equals the cell loop's, with the same linearised
 //    loads (round-off bounds);
+//  - single-precision factors refined in double end on the double factors' solution;
 //  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
 //  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
 //    10 kPa, waviness n = 1..12 up to 0.9 C0, and no supply (pi = po = p_cav) is refused.
@@ -374,6 +375,40 @@ TEST(CavitationFE, JfoLowRankUpdateGivesTheFactorisedRoundsSolution)
   const auto differ = [](const long a, const long b) { return std::abs(a - b); };
   EXPECT_LE(differ(rounds[0], rounds[1]), 2);
   EXPECT_LE(differ(factorizations[1] + updates[1], factorizations[0]), 2);
+  expect_same_jfo_solution(l[0], l[1], tolerance, film.outer_radius);
+}
+
+TEST(CavitationFE, JfoWithSinglePrecisionFactorsIsTheDoubleSolution)
+{
+  // Above SparseDirect::single_precision_limit the Newton systems are factorised in single
+  // precision and every solve (and low-rank update) refined in double to a double solve's
+  // backward error, so the rounds solve the same linear systems to round-off and end on the same
+  // set: the loads agree to the Newton tolerance and the mass balance holds (1e-8). The tilted
+  // seal at 33 024 dofs (MUMPS) with the limit lowered below its size, against the limit above.
+  FilmThickness film;
+  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  const OperatingConditions conditions;
+  const double tolerance = 1e-10;
+  const long long limit = SparseDirect::single_precision_limit;
+  FilmLoads l[2];
+  FilmLinearSolver::Statistics work[2];
+  for (const bool single : {false, true})
+  {
+    SparseDirect::single_precision_limit = single ? 20000 : 1LL << 40;
+    ReynoldsSolver solver(MPI_COMM_WORLD);
+    l[single] = converged_jfo(film, conditions, 64, 128, tolerance, solver);
+    work[single] = solver.linear_solver_statistics().statistics();
+  }
+  SparseDirect::single_precision_limit = limit;
+  std::cout << "single precision: factorisations " << work[1].factorizations << " ("
+            << work[1].single_precision_factorizations << " single), refinement steps "
+            << work[1].refinement_steps << ", fallbacks " << work[1].refinement_fallbacks << "\n";
+  EXPECT_EQ(work[0].single_precision_factorizations, 0u);
+  EXPECT_EQ(work[0].refinement_steps, 0u);
+  ASSERT_GE(work[1].factorizations, 1u);
+  EXPECT_EQ(work[1].single_precision_factorizations, work[1].factorizations);
+  EXPECT_GE(work[1].refinement_steps, work[1].solves); // every solve refines at least once
+  EXPECT_EQ(work[1].refinement_fallbacks, 0u);
   expect_same_jfo_solution(l[0], l[1], tolerance, film.outer_radius);
 }
 

@@ -285,9 +285,14 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
                                 eta_update),
             LowRankSolve::solved);
   EXPECT_GT(rcond, 1e-8);
-  // a fresh factorisation of the changed matrix
+  if (lu.single_precision())
+    EXPECT_GT(lu.refinement_steps(), 0u); // the single factors' answer alone is ~1e-8
+  // a fresh factorisation of the changed matrix (in double)
   SparseDirect fresh;
+  const long long single_precision_limit = SparseDirect::single_precision_limit;
+  SparseDirect::single_precision_limit = 1LL << 40;
   fresh.factorize(g.A);
+  SparseDirect::single_precision_limit = single_precision_limit;
   std::vector<double> y(b);
   fresh.solve_block(y, 1);
   const double eta_fresh = backward_error(g.A, y, b);
@@ -364,6 +369,153 @@ TEST(SparseDirect, LowRankUpdateGivesTheFreshFactorisationsSolutionKlu)
 TEST(SparseDirect, LowRankUpdateGivesTheFreshFactorisationsSolutionMumps)
 {
   check_update(150, 12, "MUMPS"); // 22 500 unknowns: above multifrontal_limit
+}
+
+namespace
+{
+/// SparseDirect::single_precision_limit put back at the end of a test, also one that fails
+struct RestoreSinglePrecisionLimit
+{
+  const long long value = SparseDirect::single_precision_limit;
+  ~RestoreSinglePrecisionLimit() { SparseDirect::single_precision_limit = value; }
+};
+
+/// |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf) of the vectors' values
+double backward_error(const TrilinosWrappers::SparseMatrix &A,
+                      const TrilinosWrappers::MPI::Vector &x,
+                      const TrilinosWrappers::MPI::Vector &b)
+{
+  return backward_error(A, std::vector<double>(x.begin(), x.end()),
+                        std::vector<double>(b.begin(), b.end()));
+}
+} // namespace
+
+// A one-rank MUMPS factorisation above single_precision_limit is made in single precision and its
+// solves refined in double (SparseDirect::solve). Mixed-precision iterative refinement converges
+// to the backward error of the working precision, O(u), u = 2^-53, where kappa(A) u_single is
+// well below 1 (Carson and Higham 2018); here kappa_inf(A) <= |A| / sigma = 22 / 2 and u_single =
+// 2^-24. SparseDirect stops at 128 u (refined_backward_error). The unrefined single solve
+// (solve_block) is only single-precision accurate: its backward error is above what any double
+// solve leaves (> 2^-40) and of the order of 2^-24.
+TEST(SparseDirect, SinglePrecisionFactorsAreRefinedToADoubleSolvesBackwardError)
+{
+  const RestoreSinglePrecisionLimit restore;
+  SparseDirect::single_precision_limit = 20000;
+  const unsigned int m = 150, N = m * m; // 22 500 unknowns
+  GridMatrix g(m);
+  SparseDirect lu;
+  lu.factorize(g.A);
+  ASSERT_STREQ(lu.package_name(), "MUMPS, single precision refined");
+  ASSERT_TRUE(lu.single_precision());
+  const IndexSet all = complete_index_set(N);
+  TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
+  std::vector<double> b_values(N);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = b_values[i] = std::sin(0.37 * i) + 0.5;
+  lu.solve(b, x);
+  const double eta = backward_error(g.A, x, b);
+  std::cout << "single factors, " << lu.refinement_steps() << " refinement steps: backward error "
+            << eta << "\n";
+  EXPECT_LE(eta, SparseDirect::refined_backward_error);
+  EXPECT_GE(lu.refinement_steps(), 1u);
+  EXPECT_LE(lu.refinement_steps(), SparseDirect::max_refinement_steps);
+  EXPECT_EQ(lu.refinement_fallbacks(), 0u);
+  // the same answer as a double factorisation's, within the two backward errors' bound
+  SparseDirect::single_precision_limit = 1LL << 40;
+  SparseDirect in_double;
+  in_double.factorize(g.A);
+  ASSERT_STREQ(in_double.package_name(), "MUMPS");
+  std::vector<double> y(b_values);
+  in_double.solve_block(y, 1);
+  const auto [difference, bound] =
+      two_solve_difference(g, std::vector<double>(x.begin(), x.end()), eta, y,
+                           backward_error(g.A, y, b_values), b_values);
+  EXPECT_LE(difference, bound);
+  // the single factors alone
+  std::vector<double> z(b_values);
+  lu.solve_block(z, 1);
+  const double eta_single = backward_error(g.A, z, b_values);
+  std::cout << "unrefined single solve: backward error " << eta_single << "\n";
+  EXPECT_GT(eta_single, 0x1p-40);
+  EXPECT_LT(eta_single, 64 * 0x1p-24);
+}
+
+// A matrix whose condition is beyond single precision (kappa u_single >> 1): the five-point
+// Neumann Laplacian plus sigma I, sigma = 1e-10, kappa ~ 8 / sigma. Its single factors do not
+// refine; the double factorisation's backward-stable answer (kappa u ~ 1e-5) is what solve()
+// must return, and the pattern stays with the double factorisation.
+TEST(SparseDirect, SinglePrecisionFactorsThatDoNotRefineAreFactorisedInDouble)
+{
+  const RestoreSinglePrecisionLimit restore;
+  SparseDirect::single_precision_limit = 20000;
+  const unsigned int m = 150, N = m * m;
+  const double sigma = 1e-10;
+  DynamicSparsityPattern pattern(N, N);
+  auto neighbours = [&](const unsigned int i)
+  {
+    std::vector<unsigned int> list;
+    const unsigned int p = i / m, q = i % m;
+    if (q > 0)
+      list.push_back(i - 1);
+    if (q + 1 < m)
+      list.push_back(i + 1);
+    if (p > 0)
+      list.push_back(i - m);
+    if (p + 1 < m)
+      list.push_back(i + m);
+    return list;
+  };
+  for (unsigned int i = 0; i < N; ++i)
+  {
+    pattern.add(i, i);
+    for (const unsigned int j : neighbours(i))
+      pattern.add(i, j);
+  }
+  const IndexSet all = complete_index_set(N);
+  TrilinosWrappers::SparseMatrix A;
+  A.reinit(all, all, pattern, MPI_COMM_SELF);
+  auto set_values = [&](const double scale)
+  {
+    for (unsigned int i = 0; i < N; ++i)
+    {
+      const std::vector<unsigned int> list = neighbours(i);
+      A.set(i, i, scale * (list.size() + sigma));
+      for (const unsigned int j : list)
+        A.set(i, j, -scale);
+    }
+    A.compress(VectorOperation::insert);
+  };
+  set_values(1.0);
+  SparseDirect lu;
+  lu.factorize(A);
+  ASSERT_STREQ(lu.package_name(), "MUMPS, single precision refined");
+  TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
+  for (unsigned int i = 0; i < N; ++i)
+    b[i] = std::sin(0.37 * i) + 0.5;
+  lu.solve(b, x);
+  EXPECT_STREQ(lu.package_name(), "MUMPS");
+  EXPECT_FALSE(lu.single_precision());
+  EXPECT_EQ(lu.refinement_fallbacks(), 1u);
+  const double eta = backward_error(A, x, b);
+  std::cout << "refactorised in double: backward error " << eta << "\n";
+  EXPECT_LE(eta, SparseDirect::refined_backward_error);
+  // the next matrix of the pattern: factorised in double at once
+  set_values(2.0);
+  lu.factorize(A);
+  EXPECT_STREQ(lu.package_name(), "MUMPS");
+  EXPECT_EQ(lu.numeric_only(), 1u);
+  lu.solve(b, x);
+  EXPECT_LE(backward_error(A, x, b), SparseDirect::refined_backward_error);
+  EXPECT_EQ(lu.refinement_fallbacks(), 1u);
+}
+
+// The low-rank update of single factors (its capacitance matrix from the single factors'
+// selected inverse entries) refined to the fresh factorisation's answer, as check_update bounds.
+TEST(SparseDirect, LowRankUpdateOfSinglePrecisionFactorsGivesTheFreshFactorisationsSolution)
+{
+  const RestoreSinglePrecisionLimit restore;
+  SparseDirect::single_precision_limit = 20000;
+  check_update(150, 12, "MUMPS, single precision refined");
 }
 
 TEST(SparseDirect, LowRankUpdateWithNoColumnsIsThePlainSolve)

@@ -56,6 +56,12 @@ public:
     unsigned int reused_preconditioners = 0; // solves with an earlier matrix's factorisation
     unsigned int workspace_retries = 0; // MUMPS factorisations repeated with a larger workspace
     unsigned int substructured_factorizations = 0; // of the factorisations, those shared by ranks
+    // of the factorisations, those in single precision with refined solves (SparseDirect::
+    // single_precision_limit); the refinement steps of all solves; the single factorisations
+    // given up for a double one
+    unsigned int single_precision_factorizations = 0;
+    unsigned int refinement_steps = 0;
+    unsigned int refinement_fallbacks = 0;
 
     /// The work of several runs together: counts add, the largest Krylov count is the larger.
     Statistics &operator+=(const Statistics &other);
@@ -122,8 +128,9 @@ public:
   {
     return current_method == Method::direct && !pending && direct.initialized() ? &direct : nullptr;
   }
-  const Statistics &statistics() const { return stats; }
-  void reset_statistics() { stats = Statistics(); }
+  /// (the refinement counts include those of low-rank updates on factorization())
+  Statistics statistics() const;
+  void reset_statistics();
 
 private:
   void build_preconditioner();
@@ -144,6 +151,7 @@ private:
   const FilmMultigrid *multigrid = nullptr;
   std::function<void()> prepare_multigrid;
   Statistics stats;
+  unsigned int refinement_steps_before = 0, refinement_fallbacks_before = 0; // direct's, at reset
 };
 
 } // namespace sealfe

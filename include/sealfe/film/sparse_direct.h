@@ -8,6 +8,7 @@
 
 #include <mpi.h>
 
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -15,9 +16,14 @@
 class Amesos_BaseSolver;
 class Epetra_LinearProblem;
 class Epetra_CrsMatrix;
+class Epetra_Vector;
 
 namespace sealfe
 {
+enum class LowRankSolve;
+/// A sparse column: (row, value) pairs.
+using SparseColumn = std::vector<std::pair<unsigned int, double>>;
+
 /// KLU (Amesos) or MUMPS. factorize() of a matrix with the pattern of the previous one (the same
 /// Trilinos matrix object, unchanged number of entries) repeats only the numeric factorisation.
 class SparseDirect
@@ -48,6 +54,22 @@ public:
   /// levels that every rank holds whole; a distributed level makes no low-rank update).
   static constexpr unsigned int max_shared_update_columns = 7;
 
+  /// From this many unknowns on, a matrix factorised by MUMPS on one rank is factorised in
+  /// single precision and every solve refined in double (a matrix whose single factors do not
+  /// refine, condition near 2^24, is factorised again in double, and its pattern stays there).
+  /// Off by default (no size): on the tilted seal's JFO at 1.05e6 unknowns it halves the
+  /// factors' memory (peak 3.36 -> 2.86 GB) and saves 1.7 s of factorisation, but the
+  /// refinement of the low-rank update costs 1.3 s more and the whole run is unchanged within
+  /// this machine's spread (doc/performance.md "Session 30"). Tests and studies set it.
+  static inline long long single_precision_limit = std::numeric_limits<long long>::max();
+  /// Refinement stops at this normwise backward error (2^-46, 128 u: the bound a low-rank update
+  /// is accepted at), or when a step no longer halves it, or after max_refinement_steps steps;
+  /// an answer then above it is not accepted (SparseDirect factorises in double instead). One
+  /// step takes the JFO Jacobians' first answers (1e-10) below it (doc/performance.md "Session
+  /// 30").
+  static constexpr double refined_backward_error = 0x1p-46;
+  static constexpr unsigned int max_refinement_steps = 10;
+
   SparseDirect();
   ~SparseDirect();
   /// Every rank of `team` factorises the same matrix, each holding it whole on MPI_COMM_SELF (the
@@ -63,17 +85,26 @@ public:
              dealii::TrilinosWrappers::MPI::Vector &x);
   /// X = A^-1 X for `m` right-hand sides at once (one rank; X holds n x m values column by
   /// column, n the matrix size), in one call of the solver (MUMPS's triangular solves then work on
-  /// blocks of columns).
+  /// blocks of columns). With single-precision factors (single_precision()) not refined: about
+  /// kappa 2^-24 relative (solve_column_update refines its answer).
   void solve_block(std::vector<double> &X, unsigned int m);
   /// Selected entries of A^-1 with the last factorisation: values[c * rows.size() + p] =
   /// (A^-1)(rows[p], columns[c]). MUMPS's selected-entries solve (ICNTL(30)), which prunes
   /// both triangular solves to the paths of the elimination tree that the entries need, so a few
   /// thousand entries cost about one ordinary solve. One rank; false (values untouched) where the
-  /// factorisation is not MUMPS's.
+  /// factorisation is not MUMPS's. With single-precision factors those factors' entries.
   bool inverse_entries(const std::vector<unsigned int> &rows,
                        const std::vector<unsigned int> &columns, std::vector<double> &values);
   void clear();
-  bool initialized() const { return solver || mumps || shared; }
+  bool initialized() const { return solver || mumps || single || shared; }
+  /// The last factorisation is MUMPS's in single precision (single_precision_limit).
+  bool single_precision() const { return single != nullptr; }
+  /// Refinement steps of the solves with single-precision factors (solve(), solve_column_update),
+  /// since this object was made.
+  unsigned int refinement_steps() const { return refinement_count; }
+  /// Single-precision factorisations given up for a double one (singular in single precision,
+  /// or an answer that did not refine), since this object was made.
+  unsigned int refinement_fallbacks() const { return fallback_count; }
   /// The last factorisation is shared over several ranks (numerics::SubstructuredLU); its
   /// package is MUMPS.
   bool substructured() const { return shared != nullptr; }
@@ -82,14 +113,27 @@ public:
   /// MUMPS factorisations repeated with twice the workspace margin (its estimate from the
   /// analysis of the pattern fell short: numerical pivoting), since this object was made.
   unsigned int workspace_retries() const;
-  /// "KLU", "MUMPS" or "MUMPS, substructured" (shared over several ranks): the package of the
-  /// last factorisation ("" before the first).
+  /// "KLU", "MUMPS", "MUMPS, single precision refined" or "MUMPS, substructured" (shared over
+  /// several ranks): the package of the last factorisation ("" before the first).
   const char *package_name() const { return package; }
 
 private:
-  /// MUMPS driven directly (sparse_direct.cc)
+  /// MUMPS driven directly (sparse_direct.cc), in double or single precision
+  template <class Real>
   class Mumps;
-  std::unique_ptr<Mumps> mumps;
+  std::unique_ptr<Mumps<double>> mumps;
+  std::unique_ptr<Mumps<float>> single;
+  double factors_norm = 0; // |A|_inf of the single-precision factorisation's matrix
+  unsigned int refinement_count = 0, fallback_count = 0;
+  /// x = A^-1 b by the single factors refined in double; returns its backward error.
+  double refined_solve(const Epetra_Vector &b, Epetra_Vector &x);
+  /// The matrix `A` factorised by MUMPS in double, which then keeps its pattern.
+  void factorize_in_double(const Epetra_CrsMatrix &A);
+  friend LowRankSolve solve_column_update(SparseDirect &,
+                                          const dealii::TrilinosWrappers::SparseMatrix &,
+                                          const std::vector<unsigned int> &,
+                                          const std::vector<SparseColumn> &, const double *,
+                                          double *, double, double, double &, double &);
   /// The factorisation shared over several ranks (sparse_direct.cc)
   class Shared;
   std::unique_ptr<Shared> shared;
@@ -115,9 +159,6 @@ enum class LowRankSolve
                    // columns: not tried (the guard against its block solve), x not set
 };
 
-/// A sparse column: (row, value) pairs.
-using SparseColumn = std::vector<std::pair<unsigned int, double>>;
-
 /// x = A1^-1 b by the Sherman-Morrison-Woodbury formula, where A1 differs from the factorised A0
 /// in the columns `columns` only: A1 = A0 + U E^T, U (k sparse columns) the differences
 /// A1(:, columns) - A0(:, columns), E those unit columns. With the capacitance system C = I + E^T
@@ -132,7 +173,9 @@ using SparseColumn = std::vector<std::pair<unsigned int, double>>;
 /// the n values in order. `rcond`, `backward_error`: what was found (NaN where not computed).
 /// A factorisation shared by the ranks (substructured()) takes the block path, collective over
 /// its team, and is not tried beyond SparseDirect::max_shared_update_columns columns
-/// (too_many_columns).
+/// (too_many_columns). With single-precision factors (SparseDirect::single_precision()) the
+/// formula's answer is refined: the formula applied to A1's residual (in double), as
+/// SparseDirect::solve refines, before the backward error is judged.
 LowRankSolve solve_column_update(SparseDirect &lu,
                                  const dealii::TrilinosWrappers::SparseMatrix &matrix,
                                  const std::vector<unsigned int> &columns,
