@@ -128,10 +128,11 @@ class SubnormalsFlushed
 {
 public:
 #if defined(__SSE__)
+  // MXCSR bits FTZ (0x8000) and DAZ (0x0040)
   SubnormalsFlushed() : saved(_mm_getcsr())
   {
     _mm_setcsr(saved | 0x8040);
-  } // FTZ | DAZ
+  }
   ~SubnormalsFlushed()
   {
     _mm_setcsr(saved);
@@ -162,6 +163,35 @@ struct MumpsArithmetic<float>
     smumps_c(&id);
   }
 };
+
+/// Iterative refinement of the n values x: `residual(x, r)` writes b - A x into r and returns
+/// x's normwise backward error; `correct(r)` overwrites r by an approximation of A^-1 r (the
+/// single factors, or a low-rank update of them). Steps x += correct(b - A x) while the error is
+/// above SparseDirect::refined_backward_error, at most SparseDirect::max_refinement_steps times,
+/// and stops where a step no longer halves it (that step's iterate dropped). Returns x's error
+/// (NaN stops it too); `steps` counts the corrections made.
+template <class Residual, class Correction>
+double refine(double *x, const std::size_t n, Residual &&residual, Correction &&correct,
+              unsigned int &steps)
+{
+  std::vector<double> r(n), trial(n);
+  double error = residual(x, r.data());
+  for (unsigned int step = 0;
+       error > SparseDirect::refined_backward_error && step < SparseDirect::max_refinement_steps;
+       ++step)
+  {
+    correct(r.data());
+    for (std::size_t i = 0; i < n; ++i)
+      trial[i] = x[i] + r[i];
+    ++steps;
+    const double trial_error = residual(trial.data(), r.data());
+    if (!(trial_error < 0.5 * error))
+      break;
+    std::copy(trial.begin(), trial.end(), x);
+    error = trial_error;
+  }
+  return error;
+}
 } // namespace
 
 /// MUMPS driven directly through its C interface. Amesos_Mumps, used before, converted the matrix
@@ -753,7 +783,6 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     try
     {
       single->factorize(A);
-      factors_norm = A.NormInf();
       return;
     }
     catch (const std::runtime_error &failure)
@@ -797,8 +826,7 @@ void SparseDirect::factorize_in_double(const Epetra_CrsMatrix &A)
 double SparseDirect::refined_solve(const Epetra_Vector &b, Epetra_Vector &x)
 {
   // Mixed-precision iterative refinement: x from the single factors, then x += S^-1 (b - A x)
-  // with the residual in double, until the normwise backward error is below
-  // refined_backward_error or stops halving. Each step gains about log10(1 / (c kappa 2^-24))
+  // with the residual in double (refine()). Each step gains about log10(1 / (c kappa 2^-24))
   // digits; the tilted seal's JFO Jacobian at 1.05e6 unknowns: 1.4e-10 from the single factors
   // (MUMPS's scaling), 2.6e-15 after one step (doc/performance.md "Session 30").
   const Epetra_CrsMatrix &A = *pattern_owner;
@@ -807,26 +835,23 @@ double SparseDirect::refined_solve(const Epetra_Vector &b, Epetra_Vector &x)
     throw std::logic_error("SparseDirect::solve: b and x must have the matrix's rows");
   std::copy(b.Values(), b.Values() + n, x.Values());
   single->solve_block(x.Values(), 1);
-  Epetra_Vector r(A.RangeMap());
-  double error = std::numeric_limits<double>::infinity();
-  for (unsigned int step = 0;; ++step)
+  double b_max;
+  b.NormInf(&b_max);
+  const double A_norm = A.NormInf();
+  auto residual = [&](double *values, double *r_values)
   {
-    A.Multiply(false, x, r);
+    const Epetra_Vector candidate(View, A.DomainMap(), values);
+    Epetra_Vector r(View, A.RangeMap(), r_values);
+    A.Multiply(false, candidate, r);
     r.Update(1.0, b, -1.0); // r = b - A x
-    double r_max, x_max, b_max;
+    double r_max, x_max;
     r.NormInf(&r_max);
-    x.NormInf(&x_max);
-    b.NormInf(&b_max);
-    const double scale = factors_norm * x_max + b_max;
-    const double previous = error;
-    error = scale > 0 ? r_max / scale : 0.0;
-    if (!(error > refined_backward_error) || !(error < 0.5 * previous) ||
-        step == max_refinement_steps)
-      return error;
-    single->solve_block(r.Values(), 1);
-    x.Update(1.0, r, 1.0);
-    ++refinement_count;
-  }
+    candidate.NormInf(&x_max);
+    const double scale = A_norm * x_max + b_max;
+    return scale > 0 ? r_max / scale : 0.0;
+  };
+  return refine(
+      x.Values(), n, residual, [&](double *r) { single->solve_block(r, 1); }, refinement_count);
 }
 
 void SparseDirect::solve(const dealii::TrilinosWrappers::MPI::Vector &b,
@@ -1057,47 +1082,36 @@ LowRankSolve solve_column_update(SparseDirect &lu,
     }
   }
   // the true residual of A1: the update is exact algebra, its round-off is checked here
-  std::vector<double> residual(lu.single_precision() ? n : 0);
-  backward_error = backward_error_of(matrix.trilinos_matrix(), b, result.data(), n, MPI_COMM_SELF,
-                                     residual.empty() ? nullptr : residual.data());
-  if (lu.single_precision())
+  auto residual = [&](const double *values, double *r)
+  { return backward_error_of(matrix.trilinos_matrix(), b, values, n, MPI_COMM_SELF, r); };
+  if (!lu.single_precision())
+    backward_error = residual(result.data(), nullptr);
+  else
   {
     // Single factors: C and the solves are single-precision accurate, so the update formula is
-    // applied to the residual of A1 (in double) until the backward error is below
-    // refined_backward_error or stops halving, as SparseDirect::solve refines. Each step: two
-    // solves with the single factors, C's factors reused (tilted seal, 1.05e6 unknowns, 50
-    // columns: 2.7e-7 from the formula, then 1.2e-11, 2.7e-16).
-    for (unsigned int step = 0; backward_error > SparseDirect::refined_backward_error &&
-                                step < SparseDirect::max_refinement_steps;
-         ++step)
+    // applied to the residual of A1 (in double), as SparseDirect::solve refines (refine()). Each
+    // step: two solves with the single factors, C's factors reused (tilted seal, 1.05e6
+    // unknowns, 50 columns: 2.7e-7 from the formula, then 1.2e-11, 2.7e-16).
+    auto correct = [&](double *r)
     {
-      // correction = A0^-1 (r - U C^-1 E^T A0^-1 r)
+      // r = A0^-1 (r - U C^-1 E^T A0^-1 r)
       dealii::Vector<double> s(k);
-      std::vector<double> correction(residual);
       if (k > 0)
       {
-        lu.solve_block(correction, 1);
+        std::vector<double> z(r, r + n);
+        lu.solve_block(z, 1);
         for (std::size_t p = 0; p < k; ++p)
-          s(p) = correction[columns[p]];
+          s(p) = z[columns[p]];
         C.solve(s);
-        correction = residual;
       }
       for (std::size_t q = 0; q < k; ++q)
         for (const auto &[i, value] : U[q])
-          correction[i] -= value * s(q);
+          r[i] -= value * s(q);
+      std::vector<double> correction(r, r + n);
       lu.solve_block(correction, 1);
-      std::vector<double> refined(result);
-      for (std::size_t i = 0; i < n; ++i)
-        refined[i] += correction[i];
-      const double previous = backward_error;
-      const double error = backward_error_of(matrix.trilinos_matrix(), b, refined.data(), n,
-                                             MPI_COMM_SELF, residual.data());
-      ++lu.refinement_count;
-      if (!(error < 0.5 * previous))
-        break; // (stagnated: the last iterate kept)
-      result.swap(refined);
-      backward_error = error;
-    }
+      std::copy(correction.begin(), correction.end(), r);
+    };
+    backward_error = refine(result.data(), n, residual, correct, lu.refinement_count);
   }
   if (!(backward_error <= max_backward_error))
     return LowRankSolve::inaccurate;

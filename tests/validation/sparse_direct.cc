@@ -266,6 +266,13 @@ struct ChangedColumns
   }
 };
 
+/// SparseDirect::single_precision_limit put back at the end of a test, also one that fails
+struct RestoreSinglePrecisionLimit
+{
+  const long long value = SparseDirect::single_precision_limit;
+  ~RestoreSinglePrecisionLimit() { SparseDirect::single_precision_limit = value; }
+};
+
 void check_update(const unsigned int m, const unsigned int k, const char *package)
 {
   GridMatrix g(m);
@@ -289,10 +296,11 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
     EXPECT_GT(lu.refinement_steps(), 0u); // the single factors' answer alone is ~1e-8
   // a fresh factorisation of the changed matrix (in double)
   SparseDirect fresh;
-  const long long single_precision_limit = SparseDirect::single_precision_limit;
-  SparseDirect::single_precision_limit = 1LL << 40;
-  fresh.factorize(g.A);
-  SparseDirect::single_precision_limit = single_precision_limit;
+  {
+    const RestoreSinglePrecisionLimit restore;
+    SparseDirect::single_precision_limit = 1LL << 40;
+    fresh.factorize(g.A);
+  }
   std::vector<double> y(b);
   fresh.solve_block(y, 1);
   const double eta_fresh = backward_error(g.A, y, b);
@@ -373,13 +381,6 @@ TEST(SparseDirect, LowRankUpdateGivesTheFreshFactorisationsSolutionMumps)
 
 namespace
 {
-/// SparseDirect::single_precision_limit put back at the end of a test, also one that fails
-struct RestoreSinglePrecisionLimit
-{
-  const long long value = SparseDirect::single_precision_limit;
-  ~RestoreSinglePrecisionLimit() { SparseDirect::single_precision_limit = value; }
-};
-
 /// |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf) of the vectors' values
 double backward_error(const TrilinosWrappers::SparseMatrix &A,
                       const TrilinosWrappers::MPI::Vector &x,

@@ -123,7 +123,6 @@ private:
   class Mumps;
   std::unique_ptr<Mumps<double>> mumps;
   std::unique_ptr<Mumps<float>> single;
-  double factors_norm = 0; // |A|_inf of the single-precision factorisation's matrix
   unsigned int refinement_count = 0, fallback_count = 0;
   /// x = A^-1 b by the single factors refined in double; returns its backward error.
   double refined_solve(const Epetra_Vector &b, Epetra_Vector &x);
