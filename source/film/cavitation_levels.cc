@@ -25,6 +25,25 @@ void ReynoldsSolver::compute_cell_matrices(const bool with_void, std::vector<Ful
                                            std::vector<FullMatrix<double>> &G,
                                            std::vector<Vector<double>> &F) const
 {
+  A.resize(triangulation.n_active_cells());
+  G.resize(with_void ? triangulation.n_active_cells() : 0);
+  F.resize(triangulation.n_active_cells());
+  for_each_cell_film_matrices(with_void,
+                              [&](const DoFHandler<2>::active_cell_iterator &cell,
+                                  const FullMatrix<double> &A_k, const FullMatrix<double> &G_k,
+                                  const Vector<double> &F_k)
+                              {
+                                const auto k = cell->active_cell_index();
+                                A[k] = A_k;
+                                F[k] = F_k;
+                                if (with_void)
+                                  G[k] = G_k;
+                              });
+}
+
+void ReynoldsSolver::for_each_cell_film_matrices(const bool with_void,
+                                                 const CellFilmVisit &visit) const
+{
   const unsigned int n = fe->n_dofs_per_cell();
   const QGauss<2> quadrature(polynomial_degree + 2);
   FEValues<2> fe_values(*mapping, *fe, quadrature,
@@ -39,20 +58,14 @@ void ReynoldsSolver::compute_cell_matrices(const bool with_void, std::vector<Ful
   std::optional<PolarCellValues> polar;
   if (assembles_on_polar_rows())
     polar.emplace(*mapping, *fe, quadrature);
-  A.resize(triangulation.n_active_cells());
-  G.resize(with_void ? triangulation.n_active_cells() : 0);
-  F.resize(triangulation.n_active_cells());
-  FullMatrix<double> no_void(n, n); // film_matrices sets G (to zero) even without the void
+  // (film_matrices sets G, to zero without the void)
+  FullMatrix<double> A(n, n), G(n, n);
+  Vector<double> F(n);
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      const auto k = cell->active_cell_index();
-      A[k].reinit(n, n);
-      F[k].reinit(n);
-      if (with_void)
-        G[k].reinit(n, n);
-      FullMatrix<double> &G_k = with_void ? G[k] : no_void;
-      cell_film_matrices(polar, fe_values, cell, with_void, A[k], G_k, F[k]);
+      cell_film_matrices(polar, fe_values, cell, with_void, A, G, F);
+      visit(cell, A, G, F);
     }
 }
 

@@ -105,6 +105,25 @@ bool JFOSolver::prepare_global_matrices()
   if (assemble_by_cells)
     return false; // tests: the cell-by-cell path throughout
   TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
+  return make_global_matrices(false);
+}
+
+void JFOSolver::keep_cell_matrices()
+{
+  if (cell_matrices_kept)
+    return;
+  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
+  interior_constant.clear();
+  cell_matrices_kept = true;
+}
+
+bool JFOSolver::make_global_matrices(const bool first_pass)
+{
+  const bool several_ranks = Utilities::MPI::n_mpi_processes(s.mpi_communicator) != 1;
+  // (several ranks: every rank alike, before any collective call; matrices already kept: the
+  // cell loops read them, so the pass has nothing to save)
+  if (first_pass && (several_ranks || cell_matrices_kept))
+    return false;
   global_matrices = -1;
   bool dirichlet_only = true;
   for (const auto i : s.locally_owned_dofs)
@@ -115,8 +134,9 @@ bool JFOSolver::prepare_global_matrices()
   // every rank takes the same path (the several-rank one is collective)
   if (Utilities::MPI::min(dirichlet_only ? 1 : 0, s.mpi_communicator) == 0)
     return false;
-  if (Utilities::MPI::n_mpi_processes(s.mpi_communicator) != 1)
+  if (several_ranks)
   {
+    keep_cell_matrices();
     // Several ranks: a cell at the partition boundary adds to rows another rank owns, which
     // reach it in compress(). P A and G are therefore assembled into the system matrix itself,
     // once each, with the per-round assembly's additions in its order (by position where
@@ -195,11 +215,28 @@ bool JFOSolver::prepare_global_matrices()
   const unsigned int n = s.fe->n_dofs_per_cell();
   const double P = s.pressure_scale;
   FullMatrix<double> J_PA(n, n), J_G(n, n);
-  std::vector<types::global_dof_index> dofs(n);
+  std::vector<types::global_dof_index> dofs(n), flow_dofs(n);
   std::vector<char> is_constrained(n);
   std::vector<std::size_t> where(n * n);
-  for (const auto &cell : s.dof_handler.active_cell_iterators())
+  // The first pass keeps what the later uses of the cell matrices read: the flow scale's
+  // full-film right-hand side (ReynoldsSolver::full_film_flow_scale), and for the constant terms
+  // of assemble_by_products the matrices of the cells with a constrained dof and the others'
+  // terms at a = v = 0
+  if (first_pass)
   {
+    const unsigned int n_cells = s.triangulation.n_active_cells();
+    cell_A.assign(n_cells, FullMatrix<double>());
+    cell_G.assign(n_cells, FullMatrix<double>());
+    cell_F.assign(n_cells, Vector<double>());
+    interior_constant.assign(std::size_t(n_cells) * n, 0.0);
+    s.system_rhs = 0;
+  }
+  bool pattern_holds = true;
+  auto add_cell = [&](const DoFHandler<2>::active_cell_iterator &cell, const FullMatrix<double> &A,
+                      const FullMatrix<double> &G_k, const Vector<double> &F)
+  {
+    if (!pattern_holds)
+      return;
     const auto k = cell->active_cell_index();
     cell->get_dof_indices(dofs);
     bool any_constrained = false;
@@ -208,12 +245,32 @@ bool JFOSolver::prepare_global_matrices()
       is_constrained[i] = s.homogeneous_constraints.is_constrained(dofs[i]);
       any_constrained = any_constrained || is_constrained[i];
     }
+    if (first_pass)
+    {
+      s.add_to_full_film_rhs(cell, A, F, flow_dofs);
+      if (any_constrained)
+      {
+        cell_A[k] = A;
+        cell_G[k] = G_k;
+        cell_F[k] = F;
+      }
+      else
+        // assemble_by_products' constant terms with a_j = v_j = 0 (no constrained dof), the
+        // same operations in the same order; its right-hand side's are the same values
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          double r = F(i);
+          for (unsigned int j = 0; j < n; ++j)
+            r -= A(i, j) * (s.cavitation.pressure + P * 0.0) + G_k(i, j) * 0.0;
+          interior_constant[std::size_t(k) * n + i] = r;
+        }
+    }
     // the same products as the cell-by-cell assembly (P * A(i, j), G(i, j))
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
       {
-        J_PA(i, j) = P * cell_A[k](i, j);
-        J_G(i, j) = cell_G[k](i, j);
+        J_PA(i, j) = P * A(i, j);
+        J_G(i, j) = G_k(i, j);
       }
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
@@ -222,7 +279,10 @@ bool JFOSolver::prepare_global_matrices()
         const bool kept = !is_constrained[i] && !is_constrained[j];
         where[i * n + j] = kept ? position(dofs[i], dofs[j]) : 0;
         if (kept && where[i * n + j] == missing)
-          return false;
+        {
+          pattern_holds = false;
+          return;
+        }
       }
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
@@ -250,12 +310,30 @@ bool JFOSolver::prepare_global_matrices()
           {
             const std::size_t d = position(dofs[i], dofs[i]);
             if (d == missing)
-              return false;
+            {
+              pattern_holds = false;
+              return;
+            }
             const double diagonal = (*J)(i, i);
             (*values)[d] += std::abs(diagonal) != 0. ? std::abs(diagonal) : average_diagonal;
           }
       }
+  };
+  if (cell_matrices_kept)
+  {
+    for (const auto &cell : s.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const auto k = cell->active_cell_index();
+        add_cell(cell, cell_A[k], cell_G[k], cell_F[k]);
+      }
   }
+  else
+    s.for_each_cell_film_matrices(true, add_cell);
+  if (!pattern_holds)
+    return false; // (the first pass's partial results are made again by its caller)
+  if (first_pass)
+    flow_scale = s.flow_scale_of_full_film_rhs();
   global_PA = std::move(PA);
   global_G = std::move(G);
   global_matrices = 1;
@@ -462,6 +540,15 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
         const auto k = cell->active_cell_index();
         const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
         cell->get_dof_indices(dofs);
+        if (!cell_matrices_kept && A.m() == 0)
+        {
+          // a cell without constrained dofs whose matrices the first pass did not keep
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            r(i) = b(i) = interior_constant[std::size_t(k) * dofs_per_cell + i];
+          s.homogeneous_constraints.distribute_local_to_global(r, dofs, c_res);
+          s.homogeneous_constraints.distribute_local_to_global(b, dofs, c_rhs);
+          continue;
+        }
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
           r(i) = b(i) = cell_F[k](i);
@@ -550,7 +637,10 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
     newton_rhs = 0;
   }
   if (!by_products)
+  {
     residual = 0;
+    keep_cell_matrices(); // (outside the one pass's reach: the matrices of every cell)
+  }
   if (!by_products)
     for (const auto &cell : s.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -1158,12 +1248,22 @@ void JFOSolver::step(double merit)
 
 void JFOSolver::solve()
 {
-  {
-    TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
-    s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
-  }
-  flow_scale = s.full_film_flow_scale(cell_A, cell_F);
+  // (the start sets the pressure scale P of the global P A; a full-film start assembles and
+  // solves the full film, whose right-hand side the flow scale then makes again, the same bits)
   warm_start();
+  {
+    // One rank with Dirichlet conditions only: the cell matrices are read once, in one pass
+    // that makes the global P A and G, the flow scale and the constant terms (0.36 GB not held
+    // at 1.05e6 dofs, doc/performance.md "Session 31"); else they are kept for the cell loops.
+    TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
+    if (assemble_by_cells || !make_global_matrices(true))
+    {
+      keep_cell_matrices();
+      flow_scale = s.full_film_flow_scale(cell_A, cell_F);
+    }
+    else
+      ++solves_in_one_pass;
+  }
   unsigned int next_polish = 0, polish_gap = 1;
   double mass_residual = 0, complementarity_residual = 0;
   bool converged = false;
@@ -1276,7 +1376,7 @@ void JFOSolver::solve()
 JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
 {
   GlobalMatricesAndAssembly m;
-  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
+  keep_cell_matrices();
   if (!prepare_global_matrices())
     return m;
   m.PA = global_PA;
@@ -1311,7 +1411,7 @@ JFOSolver::GlobalMatricesAndAssembly JFOSolver::global_matrices_and_assembly()
 std::pair<std::vector<double>, std::vector<double>> JFOSolver::full_film_rhs_both_ways()
 {
   const std::size_t n = s.locally_owned_dofs.n_elements();
-  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
+  keep_cell_matrices();
   s.full_film_flow_scale(cell_A, cell_F);
   const double *from_cells = owned_values(s.system_rhs);
   std::pair<std::vector<double>, std::vector<double>> rhs;
@@ -1324,7 +1424,7 @@ std::pair<std::vector<double>, std::vector<double>> JFOSolver::full_film_rhs_bot
 
 std::vector<double> JFOSolver::jacobian_at_solution(const bool by_columns)
 {
-  s.compute_cell_matrices(true, cell_A, cell_G, cell_F);
+  keep_cell_matrices();
   // The solution's unknowns: v as stored, a = (p - p_cav)/P from p = p_cav + P a, exact where
   // a = 0 and within round-off elsewhere, which the Jacobian does not see where v = 0 (there
   // d_a = 1 - a/|a| = 0 for every a > 0). Checked: the complementarity derivatives must give

@@ -266,26 +266,38 @@ double ReynoldsSolver::full_film_flow_scale(const std::vector<FullMatrix<double>
                                             const std::vector<Vector<double>> &F)
 {
   TimerOutput::Scope t(timer, "assemble");
-  // The Couette + squeeze + pressure flow right-hand side of the full film, as assemble_system()
-  // adds it: a cell without constrained dofs adds its F (by position where the matrix has
-  // CellSparsity's pattern), the others go through the constraints with their A (the Dirichlet
-  // values' columns, and the diagonal of the constrained rows); that distribution adds those
-  // cells' terms to system_matrix too: called before the cavitation models make their matrices,
-  // which replace its values (never after a solve, when it holds the Jacobian at the solution).
   system_rhs = 0;
   std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
       const auto k = cell->active_cell_index();
-      cell->get_dof_indices(dofs);
-      if (!CellSparsity::unconstrained(constraints, dofs))
-        constraints.distribute_local_to_global(A[k], F[k], dofs, system_matrix, system_rhs);
-      else if (matrix_by_position)
-        CellSparsity::add(system_rhs, F[k], dofs);
-      else
-        constraints.distribute_local_to_global(F[k], dofs, system_rhs);
+      add_to_full_film_rhs(cell, A[k], F[k], dofs);
     }
+  return flow_scale_of_full_film_rhs();
+}
+
+void ReynoldsSolver::add_to_full_film_rhs(const DoFHandler<2>::active_cell_iterator &cell,
+                                          const FullMatrix<double> &A, const Vector<double> &F,
+                                          std::vector<types::global_dof_index> &dofs)
+{
+  // The Couette + squeeze + pressure flow right-hand side of the full film, as assemble_system()
+  // adds it: a cell without constrained dofs adds its F (by position where the matrix has
+  // CellSparsity's pattern), the others go through the constraints with their A (the Dirichlet
+  // values' columns, and the diagonal of the constrained rows); that distribution adds those
+  // cells' terms to system_matrix too: called before the cavitation models make their matrices,
+  // which replace its values (never after a solve, when it holds the Jacobian at the solution).
+  cell->get_dof_indices(dofs);
+  if (!CellSparsity::unconstrained(constraints, dofs))
+    constraints.distribute_local_to_global(A, F, dofs, system_matrix, system_rhs);
+  else if (matrix_by_position)
+    CellSparsity::add(system_rhs, F, dofs);
+  else
+    constraints.distribute_local_to_global(F, dofs, system_rhs);
+}
+
+double ReynoldsSolver::flow_scale_of_full_film_rhs()
+{
   system_matrix.compress(VectorOperation::add);
   system_rhs.compress(VectorOperation::add);
   return std::max(system_rhs.l2_norm(), 1e-300);

@@ -49,6 +49,9 @@ public:
   /// converged iteration assembled only the residual, i.e. it followed a polish) or from the cell
   /// loop (assemble()); counted since the program started, one of the two per solve.
   static inline unsigned int jacobians_by_columns = 0, jacobians_by_cells = 0;
+  /// Tests: solves (coarse levels included) that read the cell matrices in one pass without
+  /// holding those of every cell (make_global_matrices), counted since the program started.
+  static inline unsigned int solves_in_one_pass = 0;
 
   /// Test hook (tests/validation/cavitation_fe.cc): on a solver set up for JFO (after a run),
   /// the flat P A and G of prepare_global_matrices next to deal.II's assembly of the same cell
@@ -136,10 +139,27 @@ private:
   /// The scale of the mass residual: the size of the full-film right-hand side (set by solve(),
   /// ReynoldsSolver::full_film_flow_scale; the test hooks do not read their merits).
   double flow_scale = 1;
-  /// Cell matrices A, G, F (state independent, ReynoldsSolver::compute_cell_matrices): once per
-  /// solve, reused by every iteration.
+  /// Cell matrices A, G, F (state independent, ReynoldsSolver::compute_cell_matrices), by active
+  /// cell index. All of them where the cell-by-cell paths need them (cell_matrices_kept: several
+  /// ranks, constraints that couple dofs, FB-Newton steps, the test hooks); after the one pass
+  /// of solve() (one rank, Dirichlet conditions only) those of the cells with a constrained dof,
+  /// the others empty, with their constant terms in interior_constant.
   std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
   std::vector<dealii::Vector<double>> cell_F;
+  bool cell_matrices_kept = false;
+  /// All cell matrices into cell_A, cell_G, cell_F, unless they are there.
+  void keep_cell_matrices();
+  /// Of a cell without constrained dofs (n values per active cell index, after the one pass):
+  /// its residual and active-set right-hand side at a = v = 0, F - A 1 p_cav, as
+  /// assemble_by_products' constant terms compute them.
+  std::vector<double> interior_constant;
+  /// The global P A and G (global_PA, global_G) from the cell matrices; with `first_pass` (one
+  /// rank only, called by solve() before any other use of the cell matrices) the same pass makes
+  /// the cell matrices as it goes and also gives the flow scale, interior_constant and the
+  /// constrained cells' matrices, so that the matrices of all cells are never held. False if the
+  /// global matrices cannot serve (then global_matrices = -1), or with `first_pass` on several
+  /// ranks (nothing done). Collective unless `first_pass` on several ranks.
+  bool make_global_matrices(bool first_pass);
   /// Values of the assembled P A and G (row by row as the system matrix stores them), and
   /// whether they can be used (0: not tried yet, 1: yes, -1: no).
   std::vector<double> global_PA, global_G;

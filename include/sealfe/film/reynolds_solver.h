@@ -263,12 +263,27 @@ private:
   void compute_cell_matrices(bool with_void, std::vector<dealii::FullMatrix<double>> &A,
                              std::vector<dealii::FullMatrix<double>> &G,
                              std::vector<dealii::Vector<double>> &F) const;
+  /// Sees a locally owned cell and its film matrices A, G, F.
+  using CellFilmVisit = std::function<void(
+      const dealii::DoFHandler<2>::active_cell_iterator &, const dealii::FullMatrix<double> &,
+      const dealii::FullMatrix<double> &, const dealii::Vector<double> &)>;
+  /// The film matrices of compute_cell_matrices (the same bits), made cell by cell in active
+  /// cell order and handed to `visit` without being kept: for a pass that reads each cell once
+  /// (the JFO's cell matrices held whole were 0.36 GB at 1.05e6 dofs, doc/performance.md).
+  void for_each_cell_film_matrices(bool with_void, const CellFilmVisit &visit) const;
   /// The cavitation models' scale of the mass residual, the size of the full-film right-hand
   /// side: system_rhs as assemble_system() makes it (the same sums in the same order), from the
   /// cell matrices `A`, `F` of compute_cell_matrices instead of a second pass over the film. run()
   /// does not assemble the full film for them; they assemble it only where they solve it.
   double full_film_flow_scale(const std::vector<dealii::FullMatrix<double>> &A,
                               const std::vector<dealii::Vector<double>> &F);
+  /// full_film_flow_scale cell by cell, for a pass that makes the cell matrices as it goes:
+  /// system_rhs = 0, then add_to_full_film_rhs for every locally owned cell in active cell order
+  /// (`dofs` a scratch of the cell's size), then flow_scale_of_full_film_rhs.
+  void add_to_full_film_rhs(const dealii::DoFHandler<2>::active_cell_iterator &cell,
+                            const dealii::FullMatrix<double> &A, const dealii::Vector<double> &F,
+                            std::vector<dealii::types::global_dof_index> &dofs);
+  double flow_scale_of_full_film_rhs();
   /// Mesh sequencing of the cavitation models: solves the same problem on the mesh twice as
   /// coarse (coarse_solver, itself sequenced) and gives its pressure and void fraction at this
   /// mesh's owned dofs (by owned index; the constrained dofs their boundary pressure and no
