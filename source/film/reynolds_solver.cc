@@ -286,7 +286,8 @@ void ReynoldsSolver::add_to_full_film_rhs(const DoFHandler<2>::active_cell_itera
   // CellSparsity's pattern), the others go through the constraints with their A (the Dirichlet
   // values' columns, and the diagonal of the constrained rows); that distribution adds those
   // cells' terms to system_matrix too: called before the cavitation models make their matrices,
-  // which replace its values (never after a solve, when it holds the Jacobian at the solution).
+  // which replace its values (after the full-film start's solve at most, whose factorisation is
+  // made; never after a cavitation solve, when it holds the Jacobian at the solution).
   cell->get_dof_indices(dofs);
   if (!CellSparsity::unconstrained(constraints, dofs))
     constraints.distribute_local_to_global(A, F, dofs, system_matrix, system_rhs);

@@ -49,8 +49,9 @@ public:
   /// converged iteration assembled only the residual, i.e. it followed a polish) or from the cell
   /// loop (assemble()); counted since the program started, one of the two per solve.
   static inline unsigned int jacobians_by_columns = 0, jacobians_by_cells = 0;
-  /// Tests: solves (coarse levels included) that read the cell matrices in one pass without
-  /// holding those of every cell (make_global_matrices), counted since the program started.
+  /// Tests: solves of a finest level (not start-only) that read the cell matrices in one pass
+  /// without holding those of every cell (make_global_matrices), counted since the program
+  /// started.
   static inline unsigned int solves_in_one_pass = 0;
 
   /// Test hook (tests/validation/cavitation_fe.cc): on a solver set up for JFO (after a run),
@@ -72,7 +73,9 @@ public:
   std::vector<double> jacobian_at_solution(bool by_columns);
   /// Test hook (tests/validation/cavitation_fe.cc): on a solver after a run, this rank's owned
   /// entries of the full-film right-hand side made from the cell matrices (ReynoldsSolver::
-  /// full_film_flow_scale, as solve() makes it) and by assemble_system(), in that order; leaves
+  /// full_film_flow_scale, as solve() makes it where it keeps them; its one pass adds the same
+  /// cells in the same order through add_to_full_film_rhs) and by assemble_system(), in that
+  /// order; leaves
   /// the full-film system in the solver.
   std::pair<std::vector<double>, std::vector<double>> full_film_rhs_both_ways();
 
@@ -136,8 +139,9 @@ private:
   void store_solution();
 
   ReynoldsSolver &s;
-  /// The scale of the mass residual: the size of the full-film right-hand side (set by solve(),
-  /// ReynoldsSolver::full_film_flow_scale; the test hooks do not read their merits).
+  /// The scale of the mass residual: the size of the full-film right-hand side (set by solve():
+  /// ReynoldsSolver::full_film_flow_scale, or flow_scale_of_full_film_rhs after the one pass of
+  /// make_global_matrices; the test hooks do not read their merits).
   double flow_scale = 1;
   /// Cell matrices A, G, F (state independent, ReynoldsSolver::compute_cell_matrices), by active
   /// cell index. All of them where the cell-by-cell paths need them (cell_matrices_kept: several
@@ -156,9 +160,10 @@ private:
   /// The global P A and G (global_PA, global_G) from the cell matrices; with `first_pass` (one
   /// rank only, called by solve() before any other use of the cell matrices) the same pass makes
   /// the cell matrices as it goes and also gives the flow scale, interior_constant and the
-  /// constrained cells' matrices, so that the matrices of all cells are never held. False if the
-  /// global matrices cannot serve (then global_matrices = -1), or with `first_pass` on several
-  /// ranks (nothing done). Collective unless `first_pass` on several ranks.
+  /// constrained cells' matrices, so that the matrices of all cells are never held; without it
+  /// the matrices are kept first (keep_cell_matrices). False if the global matrices cannot serve
+  /// (then global_matrices = -1), or with `first_pass` on several ranks or with the matrices
+  /// already kept (nothing done). Collective unless it returns at once.
   bool make_global_matrices(bool first_pass);
   /// Values of the assembled P A and G (row by row as the system matrix stores them), and
   /// whether they can be used (0: not tried yet, 1: yes, -1: no).

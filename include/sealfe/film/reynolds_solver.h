@@ -257,8 +257,9 @@ private:
                      dealii::FullMatrix<double> &G, dealii::Vector<double> &F,
                      const std::function<void(unsigned int, const LocalFilm &)> &at_point) const;
   /// The cavitation models' film matrices A, G, F of every locally owned cell (by active cell
-  /// index): they depend on the film only, so each solve computes them once for all its
-  /// iterations (cavitation_levels.cc). `with_void`: G too (JFO); without it G stays empty. A and F
+  /// index): they depend on the film only, so a solve that reads them at every iteration
+  /// computes them once (cavitation_levels.cc; the JFO's one rank reads them in one pass instead,
+  /// for_each_cell_film_matrices). `with_void`: G too (JFO); without it G stays empty. A and F
   /// have the full-film assembly's bits either way (full_film_flow_scale relies on it).
   void compute_cell_matrices(bool with_void, std::vector<dealii::FullMatrix<double>> &A,
                              std::vector<dealii::FullMatrix<double>> &G,
