@@ -52,6 +52,27 @@ void for_each_row(const Epetra_CrsMatrix &M, Visit &&visit)
   }
 }
 
+/// A cell's constant terms (JFOSolver::assemble_by_products): its residual r and active-set
+/// right-hand side b with a = v = 0 on the unconstrained dofs, fixed(j) giving the fixed values
+/// {a_j, v_j} of a constrained local dof j ({0, 0} for the others).
+template <typename Fixed>
+void cell_constant_terms(const FullMatrix<double> &A, const FullMatrix<double> &G,
+                         const Vector<double> &F, const double p_cav, const double P, Fixed &&fixed,
+                         Vector<double> &r, Vector<double> &b)
+{
+  const unsigned int n = F.size();
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    r(i) = b(i) = F(i);
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      const auto [a_j, v_j] = fixed(j);
+      r(i) -= A(i, j) * (p_cav + P * a_j) + G(i, j) * v_j;
+      b(i) -= A(i, j) * p_cav + (a_j >= v_j ? P * A(i, j) * a_j : G(i, j) * v_j);
+    }
+  }
+}
+
 /// Fischer-Burmeister function phi(a, b) = a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0,
 /// a b = 0. Returns phi and its partial derivatives (the generalised ones at the origin).
 struct FischerBurmeister
@@ -219,7 +240,8 @@ bool JFOSolver::make_global_matrices(const bool first_pass)
   const unsigned int n = s.fe->n_dofs_per_cell();
   const double P = s.pressure_scale;
   FullMatrix<double> J_PA(n, n), J_G(n, n);
-  std::vector<types::global_dof_index> dofs(n), flow_dofs(n);
+  std::vector<types::global_dof_index> dofs(n);
+  Vector<double> r(n), b(n);
   std::vector<char> is_constrained(n);
   std::vector<std::size_t> where(n * n);
   // The first pass keeps what the later uses of the cell matrices read: the flow scale's
@@ -251,7 +273,7 @@ bool JFOSolver::make_global_matrices(const bool first_pass)
     }
     if (first_pass)
     {
-      s.add_to_full_film_rhs(cell, A, F, flow_dofs);
+      s.add_to_full_film_rhs(A, F, dofs);
       if (any_constrained)
       {
         cell_A[k] = A;
@@ -259,15 +281,17 @@ bool JFOSolver::make_global_matrices(const bool first_pass)
         cell_F[k] = F;
       }
       else
-        // assemble_by_products' constant terms with a_j = v_j = 0 (no constrained dof), the
-        // same operations in the same order; its right-hand side's are the same values
-        for (unsigned int i = 0; i < n; ++i)
-        {
-          double r = F(i);
-          for (unsigned int j = 0; j < n; ++j)
-            r -= A(i, j) * (s.cavitation.pressure + P * 0.0) + G_k(i, j) * 0.0;
-          interior_constant[std::size_t(k) * n + i] = r;
-        }
+      {
+        // assemble_by_products' constant terms of a cell without constrained dofs (its residual
+        // and right-hand side are then the same values, b = r)
+        cell_constant_terms(
+            A, G_k, F, s.cavitation.pressure, P,
+            [](unsigned int) {
+              return std::pair{0.0, 0.0};
+            },
+            r, b);
+        std::copy(r.begin(), r.end(), interior_constant.begin() + std::size_t(k) * n);
+      }
     }
     // the same products as the cell-by-cell assembly (P * A(i, j), G(i, j))
     for (unsigned int i = 0; i < n; ++i)
@@ -323,7 +347,7 @@ bool JFOSolver::make_global_matrices(const bool first_pass)
           }
       }
   };
-  if (cell_matrices_kept)
+  if (!first_pass) // (kept above)
   {
     for (const auto &cell : s.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -544,27 +568,19 @@ bool JFOSolver::assemble_by_products(const VectorType &a, const VectorType &v, c
         const auto k = cell->active_cell_index();
         const FullMatrix<double> &A = cell_A[k], &G = cell_G[k];
         cell->get_dof_indices(dofs);
-        if (!cell_matrices_kept && A.m() == 0)
-        {
+        if (A.m() == 0)
           // a cell without constrained dofs whose matrices the first pass did not keep
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             r(i) = b(i) = interior_constant[std::size_t(k) * dofs_per_cell + i];
-          s.homogeneous_constraints.distribute_local_to_global(r, dofs, c_res);
-          s.homogeneous_constraints.distribute_local_to_global(b, dofs, c_rhs);
-          continue;
-        }
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-        {
-          r(i) = b(i) = cell_F[k](i);
-          for (unsigned int j = 0; j < dofs_per_cell; ++j)
-          {
-            const auto J = dofs[j];
-            const double a_j = constrained[J] ? a[J] : 0.0, v_j = constrained[J] ? v[J] : 0.0;
-            r(i) -= A(i, j) * (s.cavitation.pressure + P * a_j) + G(i, j) * v_j;
-            b(i) -=
-                A(i, j) * s.cavitation.pressure + (a_j >= v_j ? P * A(i, j) * a_j : G(i, j) * v_j);
-          }
-        }
+        else
+          cell_constant_terms(
+              A, G, cell_F[k], s.cavitation.pressure, P,
+              [&](const unsigned int j)
+              {
+                const auto J = dofs[j];
+                return std::pair{constrained[J] ? a[J] : 0.0, constrained[J] ? v[J] : 0.0};
+              },
+              r, b);
         s.homogeneous_constraints.distribute_local_to_global(r, dofs, c_res);
         s.homogeneous_constraints.distribute_local_to_global(b, dofs, c_rhs);
       }
@@ -644,7 +660,7 @@ double JFOSolver::assemble(const VectorType &a, const VectorType &v, const bool 
   {
     residual = 0;
     // (outside the one pass's reach: the matrices of every cell, made here a second time after a
-    // one pass, about 1.4 s at 1.05e6 dofs, under this timer; the measured cases never get here:
+    // one pass, under this timer, at a cost not measured; the measured cases never get here:
     // they end on a polish and take the Jacobian at the solution by columns)
     keep_cell_matrices();
   }
@@ -1258,22 +1274,20 @@ void JFOSolver::solve()
   // (the start sets the pressure scale P of the global P A; a full-film start assembles and
   // solves the full film, whose right-hand side the flow scale then makes again, the same bits)
   warm_start();
+  // One rank with Dirichlet conditions only: the cell matrices are read once, in one pass that
+  // makes the global P A and G, the flow scale and the constant terms (0.36 GB not held at
+  // 1.05e6 dofs, doc/performance.md "Session 31"); else they are kept for the cell loops.
+  bool one_pass = false;
   {
-    // One rank with Dirichlet conditions only: the cell matrices are read once, in one pass
-    // that makes the global P A and G, the flow scale and the constant terms (0.36 GB not held
-    // at 1.05e6 dofs, doc/performance.md "Session 31"); else they are kept for the cell loops.
-    bool one_pass = false;
-    {
-      TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
-      one_pass = !assemble_by_cells && make_global_matrices(true);
-      if (!one_pass)
-        keep_cell_matrices();
-    }
-    if (!one_pass) // (its own timer, "assemble")
-      flow_scale = s.full_film_flow_scale(cell_A, cell_F);
-    else if (!s.start_only)
-      ++solves_in_one_pass;
+    TimerOutput::Scope timer_scope(s.timer, "jfo cell matrices");
+    one_pass = !assemble_by_cells && make_global_matrices(true);
+    if (!one_pass)
+      keep_cell_matrices();
   }
+  if (!one_pass) // (its own timer, "assemble")
+    flow_scale = s.full_film_flow_scale(cell_A, cell_F);
+  else if (!s.start_only)
+    ++solves_in_one_pass;
   unsigned int next_polish = 0, polish_gap = 1;
   double mass_residual = 0, complementarity_residual = 0;
   bool converged = false;

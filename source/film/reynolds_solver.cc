@@ -272,14 +272,14 @@ double ReynoldsSolver::full_film_flow_scale(const std::vector<FullMatrix<double>
     if (cell->is_locally_owned())
     {
       const auto k = cell->active_cell_index();
-      add_to_full_film_rhs(cell, A[k], F[k], dofs);
+      cell->get_dof_indices(dofs);
+      add_to_full_film_rhs(A[k], F[k], dofs);
     }
   return flow_scale_of_full_film_rhs();
 }
 
-void ReynoldsSolver::add_to_full_film_rhs(const DoFHandler<2>::active_cell_iterator &cell,
-                                          const FullMatrix<double> &A, const Vector<double> &F,
-                                          std::vector<types::global_dof_index> &dofs)
+void ReynoldsSolver::add_to_full_film_rhs(const FullMatrix<double> &A, const Vector<double> &F,
+                                          const std::vector<types::global_dof_index> &dofs)
 {
   // The Couette + squeeze + pressure flow right-hand side of the full film, as assemble_system()
   // adds it: a cell without constrained dofs adds its F (by position where the matrix has
@@ -288,7 +288,6 @@ void ReynoldsSolver::add_to_full_film_rhs(const DoFHandler<2>::active_cell_itera
   // cells' terms to system_matrix too: called before the cavitation models make their matrices,
   // which replace its values (after the full-film start's solve at most, whose factorisation is
   // made; never after a cavitation solve, when it holds the Jacobian at the solution).
-  cell->get_dof_indices(dofs);
   if (!CellSparsity::unconstrained(constraints, dofs))
     constraints.distribute_local_to_global(A, F, dofs, system_matrix, system_rhs);
   else if (matrix_by_position)

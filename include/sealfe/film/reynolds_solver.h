@@ -280,10 +280,9 @@ private:
                               const std::vector<dealii::Vector<double>> &F);
   /// full_film_flow_scale cell by cell, for a pass that makes the cell matrices as it goes:
   /// system_rhs = 0, then add_to_full_film_rhs for every locally owned cell in active cell order
-  /// (`dofs` a scratch of the cell's size), then flow_scale_of_full_film_rhs.
-  void add_to_full_film_rhs(const dealii::DoFHandler<2>::active_cell_iterator &cell,
-                            const dealii::FullMatrix<double> &A, const dealii::Vector<double> &F,
-                            std::vector<dealii::types::global_dof_index> &dofs);
+  /// (`dofs` the cell's dof indices), then flow_scale_of_full_film_rhs.
+  void add_to_full_film_rhs(const dealii::FullMatrix<double> &A, const dealii::Vector<double> &F,
+                            const std::vector<dealii::types::global_dof_index> &dofs);
   double flow_scale_of_full_film_rhs();
   /// Mesh sequencing of the cavitation models: solves the same problem on the mesh twice as
   /// coarse (coarse_solver, itself sequenced) and gives its pressure and void fraction at this
