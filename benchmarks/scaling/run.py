@@ -23,7 +23,8 @@ Case: benchmarks/reynolds_speed/case.prm (the Varney & Green seal tilted to eps 
   3. jfo: JFO against full film on the same mesh (`Linear solver = auto`), degree 2, aspect 2
      and prm/wavy_jfo.prm, recording the time ratio, Newton iterations and factorisations;
   4. jforanks: JFO on the tilted seal, 1.3e5, 5.3e5 and 1.05e6 dofs, on 1 and 2 MPI ranks.
-Writes benchmarks/scaling/scaling.csv and scaling.png (process time against dofs; CG iterations
+Writes benchmarks/scaling/scaling.csv (each row with the `cpu` it ran on; rows of earlier runs
+without it predate that column) and scaling.png (process time against dofs; CG iterations
 against dofs per degree and aspect; CG iterations against the aspect; the same for the
 coefficient set's linearised solves). Each run once (the machine is shared: treat times as upper
 bounds; iteration counts are exact). --quick: up to 7e4 dofs (about a minute); the full run takes
@@ -109,6 +110,21 @@ end
             "coefficient_cg_total": coefficient_solves.get("krylov_iterations"),
             "force_z": s["force_z"], "moment_x": s["moment_x"],
             "blas_kernels": s.get("blas_kernels", {}).get("kernels")}
+
+
+def cpu_name():
+    """The processor of this machine (model name, family and model from /proc/cpuinfo): rows of
+    one scaling.csv may come from runs on machines of different kinds (--parts re-runs some
+    studies only), and their times compare only within one kind."""
+    info = {}
+    try:
+        for line in open("/proc/cpuinfo"):
+            key, _, value = line.partition(":")
+            info.setdefault(key.strip(), value.strip())
+    except OSError:
+        return ""
+    return (f"{info.get('model name', '?')} (family {info.get('cpu family', '?')}, "
+            f"model {info.get('model', '?')}, {os.cpu_count()} cores)")
 
 
 def fit_exponent(rows):
@@ -325,6 +341,11 @@ def main():
                   f"force_z rel. diff {abs(r['force_z'] / o['force_z'] - 1):.1e}, "
                   f"moment_x rel. diff {abs(r['moment_x'] / o['moment_x'] - 1):.1e}")
     path = os.path.join(HERE, "scaling.csv")
+    if not a.plot_only:
+        # this run's rows only (the kept rows of earlier runs are merged below)
+        cpu = cpu_name()
+        for r in rows:
+            r["cpu"] = cpu
     if not a.plot_only and os.path.exists(path):
         # keep the rows of the studies not re-run this time (e.g. --parts jfo)
         ran = lambda study: study.split()[0] in parts
