@@ -18,15 +18,11 @@ using namespace dealii;
 
 ReynoldsCavitationSolver::ReynoldsCavitationSolver(ReynoldsSolver &solver) : s(solver) {}
 
-void ReynoldsCavitationSolver::mass_residual(const VectorType &u, const bool with_jacobian,
-                                             VectorType &rhs)
+void ReynoldsCavitationSolver::mass_residual(const VectorType &u, VectorType &rhs)
 {
   const unsigned int n = s.fe->n_dofs_per_cell();
-  FullMatrix<double> J(n, n);
   Vector<double> R(n), local_u(n), local_p(n);
   std::vector<types::global_dof_index> dofs(n);
-  if (with_jacobian)
-    s.system_matrix = 0;
   rhs = 0;
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -39,33 +35,71 @@ void ReynoldsCavitationSolver::mass_residual(const VectorType &u, const bool wit
       cell_A[k].vmult(R, local_p);
       R -= cell_F[k];
       R *= -1.0; // rhs holds -R
-      if (with_jacobian)
-      {
-        J = cell_A[k];
-        J *= s.pressure_scale;
-        s.homogeneous_constraints.distribute_local_to_global(J, R, dofs, s.system_matrix, rhs);
-      }
-      else
-        s.homogeneous_constraints.distribute_local_to_global(R, dofs, rhs);
+      s.homogeneous_constraints.distribute_local_to_global(R, dofs, rhs);
     }
-  if (with_jacobian)
-    s.system_matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
+}
+
+void ReynoldsCavitationSolver::make_global_system(const VectorType &u)
+{
+  // The problem is linear in p = p_cav + P u, so one pass over the cells gives what every
+  // iteration needs: P A (the Jacobian before its cavitated rows are replaced) and the residual
+  // at u = 0 on the unconstrained dofs, c = F - A p with p = p_cav there and the Dirichlet
+  // pressure p_cav + P u_j on the constrained dofs j, which keep their start value. The residual
+  // at any u is then c - (P A) u (residual_by_products), and no cell's matrices are held
+  // (doc/performance.md, "The reynolds (Swift-Stieber) model"). The same pass makes the full
+  // film's right-hand side, whose norm scales the residual (ReynoldsSolver::add_to_full_film_rhs).
+  TimerOutput::Scope timer_scope(s.timer, "reynolds cell matrices");
+  const unsigned int n = s.fe->n_dofs_per_cell();
+  FullMatrix<double> J(n, n);
+  Vector<double> c(n), local_u(n), fixed_p(n);
+  std::vector<types::global_dof_index> dofs(n);
+  pressure_jacobian.copy_from(s.system_matrix); // (the system's layout)
+  pressure_jacobian = 0;
+  constant_rhs.reinit(s.locally_owned_dofs, s.mpi_communicator);
+  s.system_rhs = 0;
+  s.for_each_cell_film_matrices(
+      false,
+      [&](const DoFHandler<2>::active_cell_iterator &cell, const FullMatrix<double> &A,
+          const FullMatrix<double> &, const Vector<double> &F)
+      {
+        cell->get_dof_indices(dofs);
+        s.add_to_full_film_rhs(A, F, dofs);
+        cell->get_dof_values(u, local_u);
+        for (unsigned int j = 0; j < n; ++j)
+          fixed_p(j) = s.cavitation.pressure + (s.homogeneous_constraints.is_constrained(dofs[j])
+                                                    ? s.pressure_scale * local_u(j)
+                                                    : 0.0);
+        A.vmult(c, fixed_p);
+        c.sadd(-1.0, 1.0, F);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            J(i, j) = s.pressure_scale * A(i, j);
+        s.homogeneous_constraints.distribute_local_to_global(J, c, dofs, pressure_jacobian,
+                                                             constant_rhs);
+      });
+  pressure_jacobian.compress(VectorOperation::add);
+  constant_rhs.compress(VectorOperation::add);
+  flow_scale = s.flow_scale_of_full_film_rhs();
+}
+
+void ReynoldsCavitationSolver::residual_by_products(const VectorType &u_owned, VectorType &rhs)
+{
+  // -R = c - (P A) u: the Jacobian has no entries in the constrained columns of unconstrained
+  // rows (the homogeneous constraints drop them), and its constrained rows, which hold a
+  // diagonal, are zero in the residual as in the cell-by-cell assembly
+  pressure_jacobian.vmult(rhs, u_owned);
+  rhs.sadd(-1.0, 1.0, constant_rhs);
+  s.homogeneous_constraints.set_zero(rhs);
 }
 
 double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_jacobian,
                                           VectorType &rhs)
 {
   // The Jacobian P A is the same at every iteration (the problem is linear in p): assembled
-  // from the cells once, then copied (the same entries, bit for bit).
-  const bool assemble_matrix = with_jacobian && !have_pressure_jacobian;
-  mass_residual(u, assemble_matrix, rhs);
-  if (assemble_matrix)
-  {
-    pressure_jacobian.copy_from(s.system_matrix);
-    have_pressure_jacobian = true;
-  }
-  else if (with_jacobian)
+  // once (make_global_system), then copied (the same entries, bit for bit).
+  residual_by_products(u, rhs);
+  if (with_jacobian)
     s.system_matrix.copy_from(pressure_jacobian);
 
   {
@@ -136,7 +170,7 @@ ReynoldsCavitationSolver::complementarity_at_solution(ReynoldsSolver &solver)
   u_owned.compress(VectorOperation::insert);
   VectorType u(s.locally_owned_dofs, s.locally_relevant_dofs, s.mpi_communicator);
   u = u_owned;
-  c.mass_residual(u, false, rhs);
+  c.mass_residual(u, rhs);
   Complementarity result;
   result.flow_scale = c.flow_scale;
   for (const auto i : s.locally_owned_dofs)
@@ -153,17 +187,16 @@ ReynoldsCavitationSolver::complementarity_at_solution(ReynoldsSolver &solver)
 
 void ReynoldsCavitationSolver::solve()
 {
-  {
-    TimerOutput::Scope timer_scope(s.timer, "reynolds cell matrices");
-    s.compute_cell_matrices(false, cell_A, cell_G, cell_F);
-  }
-  flow_scale = s.full_film_flow_scale(cell_A, cell_F);
   s.reynolds_diagonal.reinit(s.locally_owned_dofs, s.mpi_communicator);
   TrilinosWrappers::MPI::Vector u_owned(s.locally_owned_dofs, s.mpi_communicator);
   start(u_owned);
-  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs, s.locally_relevant_dofs,
-                                  s.mpi_communicator);
-  u = u_owned;
+  {
+    // (the constrained dofs' start values, read on the cells that hold them)
+    TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs, s.locally_relevant_dofs,
+                                    s.mpi_communicator);
+    u = u_owned;
+    make_global_system(u);
+  }
 
   TrilinosWrappers::MPI::Vector rhs(s.locally_owned_dofs, s.mpi_communicator),
       du(s.locally_owned_dofs, s.mpi_communicator);
@@ -178,7 +211,7 @@ void ReynoldsCavitationSolver::solve()
   unsigned int it = 0;
   for (; it < s.cavitation.maximum_iterations; ++it)
   {
-    residual = assemble(u, true, rhs) / flow_scale;
+    residual = assemble(u_owned, true, rhs) / flow_scale;
     const auto &set = s.active_set;
     if (trace)
     {
@@ -207,7 +240,6 @@ void ReynoldsCavitationSolver::solve()
     s.solve_linear_system(rhs, du);
     s.homogeneous_constraints.set_zero(du);
     u_owned.add(1.0, du);
-    u = u_owned;
   }
   s.cavitation_iterations = it;
   s.cavitation_residual = residual;

@@ -43,28 +43,35 @@ public:
   static Complementarity complementarity_at_solution(ReynoldsSolver &solver);
 
 private:
-  /// Residual (-R in `rhs`, |rhs| returned) at u, and with `with_jacobian` the Newton matrix in
-  /// the solver's system matrix; both with the rows of the active set replaced by u_i = 0.
+  /// Residual (-R in `rhs`, |rhs| returned) at the owned u, and with `with_jacobian` the Newton
+  /// matrix in the solver's system matrix; both with the active set's rows made u_i = 0.
   double assemble(const VectorType &u, bool with_jacobian, VectorType &rhs);
-  /// The mass residual -R = F - A p at u (into `rhs`, every row), and with `with_jacobian` P A
-  /// into the solver's system matrix.
-  void mass_residual(const VectorType &u, bool with_jacobian, VectorType &rhs);
+  /// The mass residual -R = F - A p at the ghosted u (into `rhs`, every row), cell by cell from
+  /// cell_A, cell_F: complementarity_at_solution's own path, apart from solve()'s products.
+  void mass_residual(const VectorType &u, VectorType &rhs);
+  /// One pass over the cells (after start(), which sets the pressure scale P): P A into
+  /// pressure_jacobian, the residual's constant part into constant_rhs and the flow scale;
+  /// `u` (ghosted) gives the constrained dofs' values.
+  void make_global_system(const VectorType &u);
+  /// The mass residual -R = c - (P A) u at the owned `u_owned`, zero on the constrained rows.
+  void residual_by_products(const VectorType &u_owned, VectorType &rhs);
   /// The start u: the coarse mesh's solution at this mesh's nodes, else the clipped full film
   /// (solved here); sets the solver's pressure scale.
   void start(VectorType &u_owned);
 
   ReynoldsSolver &s;
-  /// The scale of the mass residual: the size of the full-film right-hand side (set by solve(),
-  /// ReynoldsSolver::full_film_flow_scale).
+  /// The scale of the mass residual: the size of the full-film right-hand side (set by
+  /// make_global_system, or complementarity_at_solution).
   double flow_scale = 1;
-  /// The film matrices A and F of every cell (ReynoldsSolver::compute_cell_matrices): the
-  /// problem is linear in p, so they serve every iteration.
+  /// complementarity_at_solution's film matrices A and F of every cell
+  /// (ReynoldsSolver::compute_cell_matrices); solve() holds none.
   std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
   std::vector<dealii::Vector<double>> cell_F;
   /// P A assembled once (the Jacobian of every iteration before its active rows are replaced):
-  /// copied into the system matrix instead of assembling the cells again.
+  /// copied into the system matrix at each iteration, and the residual's product.
   dealii::TrilinosWrappers::SparseMatrix pressure_jacobian;
-  bool have_pressure_jacobian = false;
+  /// The residual -R at u = 0 on the unconstrained dofs (make_global_system).
+  VectorType constant_rhs;
 };
 
 } // namespace sealfe
