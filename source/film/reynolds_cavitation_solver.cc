@@ -1,9 +1,14 @@
+#include <sealfe/film/jfo_solver.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
+#include <sealfe/film/sparse_direct.h>
 
 #include <deal.II/base/utilities.h>
 
+#include <Epetra_CrsMatrix.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <iterator>
@@ -81,6 +86,101 @@ void ReynoldsCavitationSolver::make_global_system(const VectorType &u)
   pressure_jacobian.compress(VectorOperation::add);
   constant_rhs.compress(VectorOperation::add);
   flow_scale = s.flow_scale_of_full_film_rhs();
+  // J_ii, the active set's test (assemble without the Jacobian reads it)
+  for (const auto i : s.locally_owned_dofs)
+    s.reynolds_diagonal[i] = pressure_jacobian.diag_element(i);
+  s.reynolds_diagonal.compress(VectorOperation::insert);
+}
+
+void ReynoldsCavitationSolver::column_form_step(const VectorType &rhs, VectorType &du)
+{
+  // The Newton step of the set: du_i = rhs_i (= -u_i) on the cavitated nodes C, (P A du)_i =
+  // rhs_i on the others. With du_C known, the same step solves the column form
+  //   M w = rhs - P A du_C,  M(:, j) = P A(:, j) for j not in C, e_j for j in C,
+  // and du = w off C: a set change then changes M's columns only, and a few changed columns are
+  // a low-rank update of the last factorised M (solve_column_update), as the JFO's confirming
+  // rounds are (JFOSolver::low_rank_solve). The row form changed rows, which that cannot serve.
+  const std::size_t n = s.dof_handler.n_dofs();
+  std::vector<char> cavitated(n, 0);
+  VectorType known(s.locally_owned_dofs, s.mpi_communicator), c(known), w(known);
+  for (const auto i : s.active_set)
+  {
+    cavitated[i] = 1;
+    known[i] = rhs[i];
+  }
+  pressure_jacobian.vmult(c, known);
+  c.sadd(-1.0, 1.0, rhs);
+  // M: the cavitated nodes' columns made unit columns
+  s.system_matrix.copy_from(pressure_jacobian);
+  {
+    const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
+    std::vector<long long> column_gid(M.NumMyCols());
+    for (int k = 0; k < M.NumMyCols(); ++k)
+      column_gid[k] = M.ColMap().GID64(k);
+    for (int row = 0; row < M.NumMyRows(); ++row)
+    {
+      int entries;
+      double *values;
+      int *columns;
+      M.ExtractMyRowView(row, entries, values, columns);
+      const long long i = M.RowMap().GID64(row);
+      for (int e = 0; e < entries; ++e)
+        if (const long long j = column_gid[columns[e]]; cavitated[j])
+          values[e] = j == i ? 1.0 : 0.0;
+    }
+  }
+  if (!low_rank_solve(cavitated, c, w))
+  {
+    s.factorize(false, true);
+    s.solve_linear_system(c, w);
+    factored_cavitated = std::move(cavitated);
+    factored_count = s.linear_system_solver.statistics().factorizations;
+  }
+  du = w;
+  for (const auto i : s.active_set)
+    du[i] = rhs[i];
+  du.compress(VectorOperation::insert);
+}
+
+bool ReynoldsCavitationSolver::low_rank_solve(const std::vector<char> &cavitated,
+                                              const VectorType &c, VectorType &w)
+{
+  SparseDirect *lu = s.linear_system_solver.factorization();
+  if (factored_cavitated.empty() || !lu ||
+      s.linear_system_solver.statistics().factorizations != factored_count)
+    return false;
+  std::vector<unsigned int> columns;
+  for (std::size_t j = 0; j < cavitated.size(); ++j)
+    if (cavitated[j] != factored_cavitated[j])
+    {
+      if (columns.size() == JFOSolver::low_rank_limit)
+        return false;
+      columns.push_back(j);
+    }
+  TimerOutput::Scope timer_scope(s.timer, "reynolds low-rank update");
+  // M1 = M0 + U E^T: column j goes from P A(:, j) to e_j where j entered the cavity, back where
+  // it left (P A's pattern is symmetric: column j's rows are row j's columns)
+  std::vector<SparseColumn> U(columns.size());
+  for (std::size_t d = 0; d < columns.size(); ++d)
+  {
+    const unsigned int j = columns[d];
+    const double sign = cavitated[j] ? -1.0 : 1.0;
+    for (auto e = pressure_jacobian.begin(j); e != pressure_jacobian.end(j); ++e)
+    {
+      const auto i = e->column();
+      U[d].emplace_back(i, sign * (pressure_jacobian.el(i, j) - (i == j ? 1.0 : 0.0)));
+    }
+  }
+  // the JFO's bounds (JFOSolver::low_rank_solve): C refused below rcond sqrt(u), the answer
+  // below a backward error of 128 u in M1's true residual
+  double rcond, backward_error;
+  const LowRankSolve result = solve_column_update(
+      *lu, s.system_matrix, columns, U, c.trilinos_vector()[0], w.trilinos_vector()[0],
+      std::sqrt(std::numeric_limits<double>::epsilon()), 0x1p-46, rcond, backward_error);
+  if (result != LowRankSolve::solved)
+    return false;
+  ++low_rank_updates;
+  return true;
 }
 
 void ReynoldsCavitationSolver::residual_by_products(const VectorType &u_owned, VectorType &rhs)
@@ -209,9 +309,12 @@ void ReynoldsCavitationSolver::solve()
   double residual = 0;
   bool converged = false;
   unsigned int it = 0;
+  // one rank: the steps by the column form and its low-rank updates (column_form_step); on
+  // several ranks the row form, factorised at every step
+  const bool by_columns = Utilities::MPI::n_mpi_processes(s.mpi_communicator) == 1;
   for (; it < s.cavitation.maximum_iterations; ++it)
   {
-    residual = assemble(u_owned, true, rhs) / flow_scale;
+    residual = assemble(u_owned, !by_columns, rhs) / flow_scale;
     const auto &set = s.active_set;
     if (trace)
     {
@@ -235,9 +338,14 @@ void ReynoldsCavitationSolver::solve()
       break;
     }
     previous_set = set;
-    s.factorize(false, true);
     du = 0;
-    s.solve_linear_system(rhs, du);
+    if (by_columns)
+      column_form_step(rhs, du);
+    else
+    {
+      s.factorize(false, true);
+      s.solve_linear_system(rhs, du);
+    }
     s.homogeneous_constraints.set_zero(du);
     u_owned.add(1.0, du);
   }
@@ -251,10 +359,19 @@ void ReynoldsCavitationSolver::solve()
       << s.cavitation.tolerance << "); refine the mesh or raise Cavitation/Maximum iterations";
     throw std::runtime_error(m.str());
   }
-  // The Jacobian at the solution, which linearized_loads solves with, is already factorised:
-  // the iteration stopped because the set repeated, so the last assembly built the matrix of
-  // the previous iteration again (the same copy of P A with the same rows replaced), and the
-  // linear solver holds that one's factorisation from the last step.
+  // The Jacobian at the solution, which linearized_loads solves with: on several ranks already
+  // factorised (the iteration stopped because the set repeated, so the last assembly built the
+  // matrix of the previous iteration again, the same copy of P A with the same rows replaced,
+  // and the linear solver holds that one's factorisation from the last step). On one rank the
+  // steps solved the column form: the row form is made here and factorised at its first solve,
+  // so a run without linearised loads never pays for it.
+  if (by_columns)
+  {
+    s.system_matrix.copy_from(pressure_jacobian);
+    s.system_matrix.clear_rows(s.active_set, 1.0);
+    s.factorize(false, true, true);
+  }
+  s.jfo_low_rank_updates = low_rank_updates;
   TrilinosWrappers::MPI::Vector p(s.locally_owned_dofs, s.mpi_communicator);
   for (const auto i : s.locally_owned_dofs)
     p[i] = s.cavitation.pressure + s.pressure_scale * u_owned[i];

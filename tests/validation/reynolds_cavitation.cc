@@ -5,14 +5,21 @@
 //  - the start from the mesh twice as coarse (mesh sequencing) and the old start from the clipped
 //    full film end on the same solution: the same cavitated set and the same loads to the
 //    stopping tolerance (the discrete problem is a linear complementarity problem with a
-//    symmetric positive definite matrix, whose solution is unique).
+//    symmetric positive definite matrix, whose solution is unique);
+//  - the steps by low-rank updates of an earlier factorisation (one rank) end on the solution of
+//    the steps that factorise every time, with the same linearised loads.
+#include <sealfe/film/jfo_solver.h>
 #include <sealfe/film/reynolds_cavitation_solver.h>
 #include <sealfe/film/reynolds_solver.h>
+
+#include <deal.II/base/mpi.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 using namespace sealfe;
 
@@ -112,4 +119,60 @@ TEST(ReynoldsCavitation, SequencedStartGivesTheFullFilmStartsSolution)
                       &FilmLoads::leakage_inner, &FilmLoads::leakage_outer})
     EXPECT_NEAR(a.*member, b.*member, 10 * tol * std::abs(a.*member));
   EXPECT_EQ(a.cavitated_fraction, b.cavitated_fraction);
+}
+
+TEST(ReynoldsCavitation, LowRankStepsGiveTheFactorisedStepsSolution)
+{
+  // On one rank a step whose set differs from the last factorised one in few nodes is a low-rank
+  // update of that factorisation (ReynoldsCavitationSolver::column_form_step), where otherwise
+  // every step factorises. Both iterations solve the same LCP (unique solution, as above), so
+  // they end on the same cavitated set, and their loads differ by the stopping residuals (10 tol
+  // relative, as above); so do the linearised loads, which solve with the Jacobian at the
+  // solution (made again after the update path; the stopping residual moves them by the same
+  // order). Two meshes: below 2e4 unknowns (KLU: the update by a block solve) and above (MUMPS:
+  // by selected entries of the inverse). The updates must have been taken, or the test compares
+  // a path with itself.
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    GTEST_SKIP() << "the low-rank steps are one rank's";
+  const auto tilt_x = [](double r, double t) { return 1e-7 + 1e-5 * r * std::sin(t); };
+  const std::vector<FilmPerturbation> directions = {{tilt_x, {}}, {{}, tilt_x}};
+  for (const auto &[nr, nt] : {std::pair{16u, 64u}, std::pair{64u, 128u}})
+  {
+    struct Restore
+    {
+      unsigned int limit = JFOSolver::low_rank_limit;
+      ~Restore() { JFOSolver::low_rank_limit = limit; }
+    } restore;
+    ReynoldsSolver updated(MPI_COMM_WORLD), factorised(MPI_COMM_WORLD);
+    const FilmLoads a = solve_reynolds(updated, true, nr, nt);
+    const std::vector<FilmLoads> da = updated.linearized_loads(directions);
+    JFOSolver::low_rank_limit = 0; // every changed set factorises
+    const FilmLoads b = solve_reynolds(factorised, true, nr, nt);
+    const std::vector<FilmLoads> db = factorised.linearized_loads(directions);
+    std::cout << nr << " x " << nt << " cells, " << updated.n_dofs()
+              << " dofs: " << updated.low_rank_updates() << " low-rank steps of "
+              << updated.nonlinear_iterations() << ", against " << factorised.low_rank_updates()
+              << "\n";
+    EXPECT_GT(updated.low_rank_updates(), 0u);
+    EXPECT_EQ(factorised.low_rank_updates(), 0u);
+    EXPECT_EQ(updated.nonlinear_iterations(), factorised.nonlinear_iterations());
+    const double tol = updated.cavitation.tolerance;
+    EXPECT_EQ(ReynoldsCavitationSolver::complementarity_at_solution(updated).cavitated,
+              ReynoldsCavitationSolver::complementarity_at_solution(factorised).cavitated);
+    for (auto member : {&FilmLoads::force_z, &FilmLoads::leakage_inner, &FilmLoads::leakage_outer})
+      EXPECT_NEAR(a.*member, b.*member, 10 * tol * std::abs(a.*member));
+    // the moments against |force_z| r_o: a residual of relative size tol moves p by that share,
+    // and a moment by at most that share of |force_z| times the outer radius
+    const double ro = tilted_seal().outer_radius;
+    for (auto member : {&FilmLoads::moment_x, &FilmLoads::moment_y})
+      EXPECT_NEAR(a.*member, b.*member, 10 * tol * std::abs(a.force_z) * ro);
+    for (std::size_t d = 0; d < directions.size(); ++d)
+    {
+      EXPECT_NEAR(da[d].force_z, db[d].force_z, 10 * tol * std::abs(da[d].force_z))
+          << "direction " << d;
+      for (auto member : {&FilmLoads::moment_x, &FilmLoads::moment_y})
+        EXPECT_NEAR(da[d].*member, db[d].*member, 10 * tol * std::abs(da[d].force_z) * ro)
+            << "direction " << d;
+    }
+  }
 }

@@ -55,6 +55,13 @@ private:
   void make_global_system(const VectorType &u);
   /// The mass residual -R = c - (P A) u at the owned `u_owned`, zero on the constrained rows.
   void residual_by_products(const VectorType &u_owned, VectorType &rhs);
+  /// The Newton step du of the current set (s.active_set) and right-hand side `rhs` (one rank),
+  /// by the column form: a low-rank update of its last factorisation where few columns changed
+  /// (low_rank_solve), else a factorisation.
+  void column_form_step(const VectorType &rhs, VectorType &du);
+  /// M1 w = c by a low-rank update of the factorised M0 (the set factored_cavitated) where at
+  /// most JFOSolver::low_rank_limit nodes changed set; false where it does not apply.
+  bool low_rank_solve(const std::vector<char> &cavitated, const VectorType &c, VectorType &w);
   /// The start u: the coarse mesh's solution at this mesh's nodes, else the clipped full film
   /// (solved here); sets the solver's pressure scale.
   void start(VectorType &u_owned);
@@ -72,6 +79,12 @@ private:
   dealii::TrilinosWrappers::SparseMatrix pressure_jacobian;
   /// The residual -R at u = 0 on the unconstrained dofs (make_global_system).
   VectorType constant_rhs;
+  /// The cavitated set (by dof) of the last factorised column form, and the linear solver's
+  /// factorisation count then (another factorisation in between voids it).
+  std::vector<char> factored_cavitated;
+  unsigned int factored_count = 0;
+  /// Steps solved by a low-rank update (summary.json: cavitation/low_rank_updates).
+  unsigned int low_rank_updates = 0;
 };
 
 } // namespace sealfe
