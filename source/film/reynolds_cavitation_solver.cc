@@ -96,7 +96,7 @@ void ReynoldsCavitationSolver::column_form_step(const VectorType &rhs, VectorTyp
 {
   // The Newton step of the set: du_i = rhs_i (= -u_i) on the cavitated nodes C, (P A du)_i =
   // rhs_i on the others. With du_C known, the same step solves the column form
-  //   M w = rhs - P A du_C,  M(:, j) = P A(:, j) for j not in C, e_j for j in C,
+  //   M w = rhs - P A du_C,  M(:, j) = P A(:, j) for j not in C, P A_jj e_j for j in C,
   // and du = w off C: a set change then changes M's columns only, and a few changed columns are
   // a low-rank update of the last factorised M (solve_column_update), as the JFO's confirming
   // rounds are (JFOSolver::low_rank_solve). The row form changed rows, which that cannot serve.
@@ -110,7 +110,10 @@ void ReynoldsCavitationSolver::column_form_step(const VectorType &rhs, VectorTyp
   }
   pressure_jacobian.vmult(c, known);
   c.sadd(-1.0, 1.0, rhs);
-  // M: the cavitated nodes' columns made unit columns
+  // M: the cavitated nodes' columns made P A_jj e_j. Their scale is free (w_C is not read), and
+  // P A's own keeps the update's capacitance matrix of order one: with e_j it held P A's Schur
+  // complements (1e-11 here) beside ones, and its condition test refused a third of the updates
+  // (tilted seal, 5.3e5 dofs)
   s.system_matrix.copy_from(pressure_jacobian);
   {
     const Epetra_CrsMatrix &M = s.system_matrix.trilinos_matrix();
@@ -125,8 +128,8 @@ void ReynoldsCavitationSolver::column_form_step(const VectorType &rhs, VectorTyp
       M.ExtractMyRowView(row, entries, values, columns);
       const long long i = M.RowMap().GID64(row);
       for (int e = 0; e < entries; ++e)
-        if (const long long j = column_gid[columns[e]]; cavitated[j])
-          values[e] = j == i ? 1.0 : 0.0;
+        if (const long long j = column_gid[columns[e]]; cavitated[j] && j != i)
+          values[e] = 0; // (the diagonal kept: a column of P A's scale, see above)
     }
   }
   if (!low_rank_solve(cavitated, c, w))
@@ -158,18 +161,17 @@ bool ReynoldsCavitationSolver::low_rank_solve(const std::vector<char> &cavitated
       columns.push_back(j);
     }
   TimerOutput::Scope timer_scope(s.timer, "reynolds low-rank update");
-  // M1 = M0 + U E^T: column j goes from P A(:, j) to e_j where j entered the cavity, back where
-  // it left (P A's pattern is symmetric: column j's rows are row j's columns)
+  // M1 = M0 + U E^T: column j goes from P A(:, j) to P A_jj e_j where j entered the cavity, back
+  // where it left, so U's column is -+ P A(:, j) without its diagonal (P A's pattern is
+  // symmetric: column j's rows are row j's columns)
   std::vector<SparseColumn> U(columns.size());
   for (std::size_t d = 0; d < columns.size(); ++d)
   {
     const unsigned int j = columns[d];
     const double sign = cavitated[j] ? -1.0 : 1.0;
     for (auto e = pressure_jacobian.begin(j); e != pressure_jacobian.end(j); ++e)
-    {
-      const auto i = e->column();
-      U[d].emplace_back(i, sign * (pressure_jacobian.el(i, j) - (i == j ? 1.0 : 0.0)));
-    }
+      if (const auto i = e->column(); i != j)
+        U[d].emplace_back(i, sign * pressure_jacobian.el(i, j));
   }
   // the JFO's bounds (JFOSolver::low_rank_solve): C refused below rcond sqrt(u), the answer
   // below a backward error of 128 u in M1's true residual
