@@ -149,7 +149,8 @@ bool ReynoldsCavitationSolver::low_rank_solve(const std::vector<char> &cavitated
                                               const VectorType &c, VectorType &w)
 {
   SparseDirect *lu = s.linear_system_solver.factorization();
-  if (factored_cavitated.empty() || !lu ||
+  // (a limit of 0 turns the updates off, as for JFO; an unchanged set would be a k = 0 update)
+  if (JFOSolver::low_rank_limit == 0 || factored_cavitated.empty() || !lu ||
       s.linear_system_solver.statistics().factorizations != factored_count)
     return false;
   std::vector<unsigned int> columns;
@@ -199,7 +200,7 @@ double ReynoldsCavitationSolver::assemble(const VectorType &u, const bool with_j
                                           VectorType &rhs)
 {
   // The Jacobian P A is the same at every iteration (the problem is linear in p): assembled
-  // once (make_global_system), then copied (the same entries, bit for bit).
+  // once (make_global_system); the row form copies it here (the same entries, bit for bit).
   residual_by_products(u, rhs);
   if (with_jacobian)
     s.system_matrix.copy_from(pressure_jacobian);
@@ -261,9 +262,9 @@ ReynoldsCavitationSolver::complementarity_at_solution(ReynoldsSolver &solver)
   ReynoldsCavitationSolver c(solver);
   ReynoldsSolver &s = solver;
   s.compute_cell_matrices(false, c.cell_A, c.cell_G, c.cell_F);
-  // the solve left the full-film right-hand side in system_rhs (full_film_flow_scale, or the
-  // assembly of the coarsest level); computing it again here would add the constrained cells'
-  // terms to the system matrix, which holds the Jacobian at the solution
+  // the solve left the full-film right-hand side in system_rhs (make_global_system's
+  // add_to_full_film_rhs); computing it again here would add the constrained cells' terms to the
+  // system matrix, which holds the Jacobian at the solution
   c.flow_scale = std::max(s.system_rhs.l2_norm(), 1e-300);
   VectorType u_owned(s.locally_owned_dofs, s.mpi_communicator),
       rhs(s.locally_owned_dofs, s.mpi_communicator);
@@ -311,9 +312,12 @@ void ReynoldsCavitationSolver::solve()
   double residual = 0;
   bool converged = false;
   unsigned int it = 0;
-  // one rank: the steps by the column form and its low-rank updates (column_form_step); on
-  // several ranks the row form, factorised at every step
-  const bool by_columns = Utilities::MPI::n_mpi_processes(s.mpi_communicator) == 1;
+  // A solver of one rank takes the steps by the column form and its low-rank updates
+  // (column_form_step): every one-rank run, and the coarse levels of a several-rank run, which
+  // each rank solves whole (their factorisations shared over the ranks, whose updates take at
+  // most SparseDirect::max_shared_update_columns columns). The distributed level of a
+  // several-rank run takes the row form, factorised at every step.
+  const bool by_columns = column_form && Utilities::MPI::n_mpi_processes(s.mpi_communicator) == 1;
   for (; it < s.cavitation.maximum_iterations; ++it)
   {
     residual = assemble(u_owned, !by_columns, rhs) / flow_scale;
@@ -366,7 +370,8 @@ void ReynoldsCavitationSolver::solve()
   // matrix of the previous iteration again, the same copy of P A with the same rows replaced,
   // and the linear solver holds that one's factorisation from the last step). On one rank the
   // steps solved the column form: the row form is made here and factorised at its first solve,
-  // so a run without linearised loads never pays for it.
+  // so a run without linearised loads never pays for it. Nothing may change the system matrix
+  // before that solve (e.g. add_to_full_film_rhs adds to it).
   if (by_columns)
   {
     s.system_matrix.copy_from(pressure_jacobian);

@@ -71,7 +71,7 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   {
     // Same mesh and dofs: only the Dirichlet data (boundary pressures) may have changed. (The
     // matrix and right-hand side are made from zero by whoever fills them: assemble_system,
-    // full_film_flow_scale, the cavitation models.)
+    // full_film_flow_scale or add_to_full_film_rhs, the cavitation models.)
     setup_constraints();
     return;
   }
@@ -780,7 +780,8 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   // The cavitation models (jfo, reynolds) start from their solution of the mesh twice as coarse
   // (mesh sequencing) and assemble and solve the full film only where that start is not
   // available (JFOSolver::warm_start, ReynoldsCavitationSolver::start); the right-hand side they
-  // scale their residual by comes from their own cell matrices (full_film_flow_scale). The
+  // scale their residual by comes from their own cell matrices (full_film_flow_scale, or
+  // add_to_full_film_rhs in their one pass over the cells). The
   // assembly here took 0.62-0.82 s of 19-24 s at 1.05e6 dofs (tilted JFO, session 22).
   if (cavitation.is_nonlinear())
     affine_loads.reset(false, 0, 0); // no full-film load sums

@@ -123,15 +123,17 @@ TEST(ReynoldsCavitation, SequencedStartGivesTheFullFilmStartsSolution)
 
 TEST(ReynoldsCavitation, LowRankStepsGiveTheFactorisedStepsSolution)
 {
-  // On one rank a step whose set differs from the last factorised one in few nodes is a low-rank
-  // update of that factorisation (ReynoldsCavitationSolver::column_form_step), where otherwise
-  // every step factorises. Both iterations solve the same LCP (unique solution, as above), so
-  // they end on the same cavitated set, and their loads differ by the stopping residuals (10 tol
-  // relative, as above); so do the linearised loads, which solve with the Jacobian at the
-  // solution (made again after the update path; the stopping residual moves them by the same
-  // order). Two meshes: below 2e4 unknowns (KLU: the update by a block solve) and above (MUMPS:
-  // by selected entries of the inverse). The updates must have been taken, or the test compares
-  // a path with itself.
+  // On one rank each step solves the column form, and a step whose set differs from the last
+  // factorised one in few nodes is a low-rank update of that factorisation
+  // (ReynoldsCavitationSolver::column_form_step); the row form factorises every step (the hook
+  // column_form = false, as on several ranks). Both iterations solve the same LCP (unique
+  // solution, as above), so they end on the same cavitated set, and their loads differ by the
+  // stopping residuals (10 tol relative, as above). The linearised loads solve with the
+  // Jacobian at the solution: the row form's from its last step's factorisation, the column
+  // form's made again and factorised at the first solve; the same matrix, so they differ by the
+  // solutions' residuals too. Two meshes: below 2e4 unknowns (KLU: the update by a block solve)
+  // and above (MUMPS: by selected entries of the inverse). The updates must have been taken, or
+  // the test compares a path with itself.
   if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     GTEST_SKIP() << "the low-rank steps are one rank's";
   const auto tilt_x = [](double r, double t) { return 1e-7 + 1e-5 * r * std::sin(t); };
@@ -140,13 +142,12 @@ TEST(ReynoldsCavitation, LowRankStepsGiveTheFactorisedStepsSolution)
   {
     struct Restore
     {
-      unsigned int limit = JFOSolver::low_rank_limit;
-      ~Restore() { JFOSolver::low_rank_limit = limit; }
+      ~Restore() { ReynoldsCavitationSolver::column_form = true; }
     } restore;
     ReynoldsSolver updated(MPI_COMM_WORLD), factorised(MPI_COMM_WORLD);
     const FilmLoads a = solve_reynolds(updated, true, nr, nt);
     const std::vector<FilmLoads> da = updated.linearized_loads(directions);
-    JFOSolver::low_rank_limit = 0; // every changed set factorises
+    ReynoldsCavitationSolver::column_form = false; // every step factorises its row form
     const FilmLoads b = solve_reynolds(factorised, true, nr, nt);
     const std::vector<FilmLoads> db = factorised.linearized_loads(directions);
     std::cout << nr << " x " << nt << " cells, " << updated.n_dofs()

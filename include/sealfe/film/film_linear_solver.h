@@ -123,7 +123,7 @@ public:
   /// substructured" (shared over several ranks) ("" if none).
   const char *direct_package() const { return direct.package_name(); }
   /// The factorisation of the last prepared matrix when it is a direct one and done (not
-  /// deferred): the JFO's low-rank updates solve with it. Null otherwise.
+  /// deferred): the cavitation models' low-rank updates solve with it. Null otherwise.
   SparseDirect *factorization()
   {
     return current_method == Method::direct && !pending && direct.initialized() ? &direct : nullptr;

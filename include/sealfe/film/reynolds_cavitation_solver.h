@@ -16,7 +16,8 @@ class ReynoldsSolver;
 /// Solves p_j = p_cav + P u_j with the complementarity min(u_j, R_j/J_jj) = 0 (an obstacle
 /// problem; Hintermueller, Ito & Kunisch 2002) starting from the solution of the mesh twice as
 /// coarse (mesh sequencing), else from the full film clipped at p_cav. Leaves the pressure, the
-/// active set (nodes held at p_cav) and the factorised Jacobian at the solution in the solver.
+/// active set (nodes held at p_cav) and the Jacobian at the solution, prepared for the linear
+/// solver (factorised, or factorised at its first solve), in the solver.
 /// One object per solve.
 class ReynoldsCavitationSolver
 {
@@ -30,6 +31,9 @@ public:
   /// Tests: false starts every mesh from its clipped full film (the start before mesh
   /// sequencing), to compare the two.
   static inline bool sequenced_start = true;
+  /// Tests: false takes every step in the row form, factorised (as on several ranks), to compare
+  /// the column form's low-rank steps with it.
+  static inline bool column_form = true;
   /// Test hook: the complementarity data at the solution a solve left in `solver`, for its
   /// owned dofs without constraints (in increasing index): u = (p - p_cav)/P, the mass residual
   /// R = A p - F over the flow scale |F| (recomputed from the stored pressure), the Jacobian's
@@ -75,7 +79,8 @@ private:
   std::vector<dealii::FullMatrix<double>> cell_A, cell_G;
   std::vector<dealii::Vector<double>> cell_F;
   /// P A assembled once (the Jacobian of every iteration before its active rows are replaced):
-  /// copied into the system matrix at each iteration, and the residual's product.
+  /// the residual's product, and copied into the system matrix for each step's row or column
+  /// form.
   dealii::TrilinosWrappers::SparseMatrix pressure_jacobian;
   /// The residual -R at u = 0 on the unconstrained dofs (make_global_system).
   VectorType constant_rhs;

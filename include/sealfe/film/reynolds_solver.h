@@ -167,8 +167,9 @@ public:
   /// MUMPS factorisations of the band rounds repeated with a larger workspace margin
   /// (SparseDirect::workspace_retries), which linear_solver_statistics() does not count.
   unsigned int band_workspace_retries() const { return jfo_band_workspace_retries; }
-  /// Of the global rounds, those solved by a low-rank update of an earlier round's factorisation
-  /// (no factorisation: JFOSolver::low_rank_solve).
+  /// JFO: of the global rounds, those solved by a low-rank update of an earlier round's
+  /// factorisation (no factorisation: JFOSolver::low_rank_solve); reynolds: of the steps, those
+  /// so solved (ReynoldsCavitationSolver::low_rank_solve).
   unsigned int low_rank_updates() const { return jfo_low_rank_updates; }
   /// JFO on a sequenced mesh: whether a finer level started from this one skips the band start,
   /// because this level's first global round flipped more than a tenth of what its band rounds
@@ -258,9 +259,10 @@ private:
                      const std::function<void(unsigned int, const LocalFilm &)> &at_point) const;
   /// The cavitation models' film matrices A, G, F of every locally owned cell (by active cell
   /// index): they depend on the film only, so a solve that reads them at every iteration
-  /// computes them once (cavitation_levels.cc; the JFO's one rank reads them in one pass instead,
-  /// for_each_cell_film_matrices). `with_void`: G too (JFO); without it G stays empty. A and F
-  /// have the full-film assembly's bits either way (full_film_flow_scale relies on it).
+  /// computes them once (cavitation_levels.cc; the JFO's one rank and the reynolds model read
+  /// them in one pass instead, for_each_cell_film_matrices). `with_void`: G too (JFO); without it G
+  /// stays empty. A and F have the full-film assembly's bits either way (full_film_flow_scale
+  /// relies on it).
   void compute_cell_matrices(bool with_void, std::vector<dealii::FullMatrix<double>> &A,
                              std::vector<dealii::FullMatrix<double>> &G,
                              std::vector<dealii::Vector<double>> &F) const;
