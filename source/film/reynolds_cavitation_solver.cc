@@ -55,6 +55,15 @@ void ReynoldsCavitationSolver::make_global_system(const VectorType &u)
   // (doc/performance.md, "The reynolds (Swift-Stieber) model"). The same pass makes the full
   // film's right-hand side, whose norm scales the residual (ReynoldsSolver::add_to_full_film_rhs).
   TimerOutput::Scope timer_scope(s.timer, "reynolds cell matrices");
+  // (constrained dofs held at their values: Dirichlet conditions; a hanging node's value follows
+  // its neighbours', which c and the column form do not take into account)
+  bool dirichlet_only = true;
+  for (const auto i : s.locally_owned_dofs)
+    dirichlet_only &= !s.homogeneous_constraints.is_constrained(i) ||
+                      s.homogeneous_constraints.get_constraint_entries(i)->empty();
+  if (Utilities::MPI::min(dirichlet_only ? 1 : 0, s.mpi_communicator) == 0)
+    throw std::logic_error("Cavitation (reynolds): the mesh has constraints other than the "
+                           "Dirichlet conditions (hanging nodes), which this solver does not take");
   const unsigned int n = s.fe->n_dofs_per_cell();
   FullMatrix<double> J(n, n);
   Vector<double> c(n), local_u(n), fixed_p(n);
