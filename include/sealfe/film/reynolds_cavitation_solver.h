@@ -50,6 +50,9 @@ private:
   /// Residual (-R in `rhs`, |rhs| returned) at the owned u, and with `with_jacobian` the Newton
   /// matrix in the solver's system matrix; both with the active set's rows made u_i = 0.
   double assemble(const VectorType &u, bool with_jacobian, VectorType &rhs);
+  /// The row-form Newton matrix of the active set in the solver's system matrix: P A with the
+  /// cavitated rows made u_i rows (identity).
+  void make_row_form();
   /// The mass residual -R = F - A p at the ghosted u (into `rhs`, every row), cell by cell from
   /// cell_A, cell_F: complementarity_at_solution's own path, apart from solve()'s products.
   void mass_residual(const VectorType &u, VectorType &rhs);
