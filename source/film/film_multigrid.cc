@@ -3,6 +3,7 @@
 #include <sealfe/film/lap_timer.h>
 #include <sealfe/film/level_transfer.h>
 #include <sealfe/film/line_jacobi.h>
+#include <sealfe/film/line_stencil_matrix.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/sparse_direct.h>
 
@@ -113,7 +114,25 @@ std::vector<types::global_dof_index> numbers_by_lines(const IndexSet &owned,
   return numbers;
 }
 
-using Smoother = PreconditionChebyshev<MatrixType, VectorType, LineJacobi>;
+/// A level's operator in the smoother and the V-cycle's residual: the level matrix, or on the
+/// finest level (the system) its single-precision line stencil (LineStencilMatrix), whose
+/// products read about half the memory. The CG iterations keep the system matrix.
+struct LevelOperator : public Subscriptor
+{
+  const MatrixType *matrix = nullptr;
+  const LineStencilMatrix *stencil = nullptr;
+  void vmult(VectorType &dst, const VectorType &src) const
+  {
+    if (stencil)
+      stencil->vmult(dst, src);
+    else
+      matrix->vmult(dst, src);
+  }
+  types::global_dof_index m() const { return matrix->m(); }
+  types::global_dof_index n() const { return matrix->n(); }
+};
+
+using Smoother = PreconditionChebyshev<LevelOperator, VectorType, LineJacobi>;
 /// CG (Lanczos) steps that estimate the largest eigenvalue of each level's smoothed operator
 /// (scaled by 1.2 below). 6 and 12 steps gave the same CG iterations at 1.05e6 Q2 dofs (9) and
 /// the same or one fewer on six meshes of degrees 1-3 and Ntheta/Nr = 1-32 (doc/performance.md);
@@ -184,6 +203,10 @@ struct FilmMultigrid::Data
   std::vector<RadialLines> lines;
   MGLevelObject<MatrixType> level_matrices; // the assembled ones
   LevelMatrices operators;
+  /// [l]: the smoother's and the V-cycle's operator on level l (the finest level's stencil
+  /// where the finest level is the system and Parameters::single_precision_finest is set).
+  std::vector<LevelOperator> level_operators;
+  LineStencilMatrix fine_stencil;
   /// The finest level is the system (setup): its operator the system matrix, its vectors the
   /// system's, its lines the active ones, the transfer's last rows the active dofs.
   bool fine_is_system = false;
@@ -212,7 +235,7 @@ struct FilmMultigrid::Data
       return;
     }
     smoother.apply(l, solution[l], defect[l]);
-    operators.vmult(l, residual[l], solution[l]);
+    level_operators[l].vmult(residual[l], solution[l]);
     residual[l].sadd(-1.0, 1.0, defect[l]);
     defect[l - 1] = 0;
     level_transfer.restrict_and_add(l, defect[l - 1], residual[l]);
@@ -429,12 +452,26 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
   for (unsigned int l = 0; l < n_levels; ++l)
     data->operators.matrices[l] =
         data->is_system_level(l) ? &fine_matrix : &data->level_matrices[l];
+  // The finest level's stencil: only where that level is the system (numbered by lines).
+  data->level_operators.resize(n_levels);
+  for (unsigned int l = 0; l < n_levels; ++l)
+  {
+    data->level_operators[l].matrix = data->operators.matrices[l];
+    data->level_operators[l].stencil = nullptr;
+  }
+  if (data->fine_is_system && parameters.single_precision_finest)
+  {
+    data->fine_stencil.initialize(fine_matrix, data->lines[fine].start);
+    data->level_operators[fine].stencil = &data->fine_stencil;
+    lap("finest level stencil");
+  }
 
   // Smoothers: Chebyshev around radial line Jacobi, spectrum estimated by a few CG steps.
   data->smoother.smoothers.resize(0, fine);
   for (unsigned int l = 1; l < n_levels; ++l)
   {
     const MatrixType &A = *data->operators.matrices[l];
+    const LevelOperator &level_operator = data->level_operators[l];
     typename Smoother::AdditionalData smoother_data;
     smoother_data.preconditioner = std::make_shared<LineJacobi>();
     smoother_data.preconditioner->initialize(A, data->lines[l]);
@@ -465,12 +502,12 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
             if (!eigenvalues.empty())
               largest = eigenvalues.back();
           });
-      cg.solve(A, x, b, *smoother_data.preconditioner);
+      cg.solve(level_operator, x, b, *smoother_data.preconditioner);
       smoother_data.eig_cg_n_iterations = 0;
       smoother_data.max_eigenvalue = 1.2 * largest;
     }
     lap("eigenvalue estimates");
-    data->smoother.smoothers[l].initialize(A, smoother_data);
+    data->smoother.smoothers[l].initialize(level_operator, smoother_data);
   }
   data->coarse.direct.factorize(*data->operators.matrices[0]);
   lap("coarse factorisation");

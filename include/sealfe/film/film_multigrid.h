@@ -51,6 +51,10 @@ public:
   {
     unsigned int smoother_degree = 2;
     double smoothing_range = 5;
+    /// The smoother's and the V-cycle's products on the finest level with the system matrix's
+    /// values in single precision (LineStencilMatrix), where that level is the system; the CG
+    /// keeps the double matrix, so the solution is that of the same system.
+    bool single_precision_finest = true;
   };
 
   FilmMultigrid();
