@@ -62,15 +62,18 @@ void LineStencilMatrix::initialize(const MatrixType &A, const std::vector<unsign
   position_reach.assign(n_lines, 0);
   value_offset.assign(n_lines + 1, 0);
   values.clear();
-  values.reserve(std::size_t(E.NumMyNonzeros()) * 5 / 4); // Q2: 20 slots per row, 16 entries
+  values.reserve(std::size_t(E.NumMyNonzeros()) * 3 / 2); // Q2: 20 slots per row, 16 entries
   diagonal.assign(n_owned, 0.0);
   stencil_rows = 0;
   unsigned int remainder_rows = 0;
+  // zero between lines where the last line wrote (a 49-slot block per line would be zeroed 4
+  // times over what Q2 fills)
   std::vector<float> block;
   for (unsigned int k = 0; k < n_lines; ++k)
   {
     const unsigned int length = start[k + 1] - start[k];
-    block.assign(std::size_t(length) * width * width, 0.f);
+    if (block.size() < std::size_t(length) * width * width)
+      block.assign(std::size_t(length) * width * width, 0.f);
     int ak = 0, rk = 0;
     for (unsigned int q = 0; q < length && ak >= 0; ++q)
     {
@@ -106,6 +109,8 @@ void LineStencilMatrix::initialize(const MatrixType &A, const std::vector<unsign
     }
     line_reach[k] = std::int8_t(ak);
     position_reach[k] = std::int8_t(rk);
+    // the slots written: up to the row that did not fit, within the reaches met so far
+    const int a_written = ak < 0 ? max_reach : ak, r_written = ak < 0 ? max_reach : rk;
     if (ak < 0)
     {
       std::fill(diagonal.begin() + start[k], diagonal.begin() + start[k + 1], 0.0);
@@ -120,6 +125,12 @@ void LineStencilMatrix::initialize(const MatrixType &A, const std::vector<unsign
             block.begin() + std::size_t((a + max_reach) * width + max_reach - rk) * length;
         values.insert(values.end(), first, first + std::size_t(2 * rk + 1) * length);
       }
+    }
+    for (int a = -a_written; a <= a_written; ++a)
+    {
+      const auto first =
+          block.begin() + std::size_t((a + max_reach) * width + max_reach - r_written) * length;
+      std::fill(first, first + std::size_t(2 * r_written + 1) * length, 0.f);
     }
     value_offset[k + 1] = values.size();
   }
