@@ -20,7 +20,10 @@ namespace sealfe
 /// are re-discretisations of the same operator on the coarser levels of the mesh (K evaluated at
 /// the level cells' quadrature points), Chebyshev smoothing around radial line Jacobi (LineJacobi,
 /// line_jacobi.h: each line of dofs at one angle solved exactly, the cells being long in theta)
-/// on every level, KLU on the coarsest level, prolongation by the finite-element embedding.
+/// on every level, KLU on the coarsest level, prolongation by the finite-element embedding. On
+/// the finest level, where it is the system, the smoother's and the residual's products take
+/// the system matrix in single precision (LineStencilMatrix: half the memory read; the CG keeps
+/// the double matrix).
 ///
 /// The finest level is the system itself where it can be: its operator is the system matrix,
 /// its vectors the system's, its lines the active ones (number_by_radial_lines), and the last
