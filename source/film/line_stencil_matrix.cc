@@ -19,8 +19,8 @@ namespace
 /// float-to-double conversions and products go 4 or 8 at a time (a product at 1.05e6 Q2 dofs,
 /// stand-alone: 6.6 ms against 10.3 ms with SSE2, doc/performance.md).
 __attribute__((target_clones("default", "avx2", "arch=x86-64-v4"))) void
-add_slot(const float *__restrict v, const double *__restrict x, double *__restrict y,
-         const int q0, const int q1)
+add_slot(const float *__restrict v, const double *__restrict x, double *__restrict y, const int q0,
+         const int q1)
 {
   for (int q = q0; q < q1; ++q)
     y[q] += double(v[q]) * x[q];
