@@ -344,6 +344,8 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
 
   data->level_constraints.resize(n_levels);
   data->by_position.assign(n_levels, 0);
+  // sized once per mesh: the smoothers of every prepare() hold references to them
+  data->level_operators.resize(n_levels);
   data->level_matrices.resize(0, fine);
   for (unsigned int l = 0; l < n_levels; ++l)
   {
@@ -453,7 +455,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     data->operators.matrices[l] =
         data->is_system_level(l) ? &fine_matrix : &data->level_matrices[l];
   // The finest level's stencil: only where that level is the system (numbered by lines).
-  data->level_operators.resize(n_levels);
+  Assert(data->level_operators.size() == n_levels, ExcInternalError());
   for (unsigned int l = 0; l < n_levels; ++l)
   {
     data->level_operators[l].matrix = data->operators.matrices[l];

@@ -8,6 +8,8 @@
 // - gather/scatter: on the same matrix numbered otherwise (a permutation of the dofs, as deal.II
 //   numbers a multigrid level) the result is the same permutation of the result on the matrix
 //   numbered by lines, to the bit: the same band and the same operations in the same order.
+// - interleaving: lines of one length are swept 4 at a time, side by side; each line's result is
+//   the one of that line's block solved alone (a matrix of one line), to the bit.
 // Half bandwidths 1-3 (the unrolled solves) and 4 (the generic one).
 #include <sealfe/film/line_jacobi.h>
 
@@ -37,7 +39,7 @@ using Entries = std::map<std::pair<unsigned int, unsigned int>, double>;
 /// Lines of these lengths (2 and 3: shorter than the band), numbered one after the other.
 const std::vector<unsigned int> lengths = {2, 9, 7, 12, 3, 8};
 
-RadialLines lines_in_order()
+RadialLines lines_in_order(const std::vector<unsigned int> &lengths = ::lengths)
 {
   RadialLines lines;
   lines.start = {0};
@@ -190,6 +192,57 @@ TEST(LineJacobi, GatherIntoLineOrderIsThePermutedSolve)
     unsigned int differences = 0;
     for (unsigned int p = 0; p < n; ++p)
       differences += xp.begin()[number[p]] != x.begin()[p];
+    EXPECT_EQ(differences, 0u) << "half bandwidth " << w;
+  }
+}
+
+TEST(LineJacobi, InterleavedLinesAreSolvedAsAlone)
+{
+  // groups of 4 lines of one length (lines 0-3, 4-7, 10-13), lines left over one at a time (8;
+  // 9, shorter than the band at w = 4)
+  const RadialLines lines = lines_in_order({8, 8, 8, 8, 8, 8, 8, 8, 8, 3, 8, 8, 8, 8});
+  const unsigned int n = lines.size(), n_lines = lines.start.size() - 1;
+  std::vector<unsigned int> identity(n);
+  std::iota(identity.begin(), identity.end(), 0u);
+  const IndexSet all = complete_index_set(n);
+  for (const unsigned int w : {1u, 2u, 3u, 4u})
+  {
+    const Entries a = make_entries(lines, w);
+    TrilinosWrappers::SparseMatrix A;
+    make_matrix(A, a, identity);
+    LineJacobi jacobi;
+    jacobi.initialize(A, lines);
+    TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(b);
+    for (unsigned int p = 0; p < n; ++p)
+      b.begin()[p] = std::sin(0.61 * p + 0.2);
+    jacobi.vmult(x, b);
+    unsigned int differences = 0;
+    for (unsigned int k = 0; k < n_lines; ++k)
+    {
+      const unsigned int first = lines.start[k], m = lines.start[k + 1] - first;
+      // line k's block alone: its entries shifted to 0 .. m-1
+      Entries block;
+      for (const auto &[ij, v] : a)
+        if (ij.first >= first && ij.first < first + m && ij.second >= first &&
+            ij.second < first + m)
+          block[{ij.first - first, ij.second - first}] = v;
+      RadialLines one_line;
+      one_line.start = {0, m};
+      one_line.order.resize(m);
+      std::vector<unsigned int> local(m);
+      std::iota(local.begin(), local.end(), 0u);
+      TrilinosWrappers::SparseMatrix B;
+      make_matrix(B, block, local);
+      LineJacobi alone;
+      alone.initialize(B, one_line);
+      const IndexSet line_set = complete_index_set(m);
+      TrilinosWrappers::MPI::Vector bk(line_set, MPI_COMM_SELF), xk(bk);
+      for (unsigned int q = 0; q < m; ++q)
+        bk.begin()[q] = b.begin()[first + q];
+      alone.vmult(xk, bk);
+      for (unsigned int q = 0; q < m; ++q)
+        differences += xk.begin()[q] != x.begin()[first + q];
+    }
     EXPECT_EQ(differences, 0u) << "half bandwidth " << w;
   }
 }

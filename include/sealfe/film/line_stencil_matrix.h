@@ -39,7 +39,7 @@ public:
   using MatrixType = dealii::TrilinosWrappers::SparseMatrix;
   using VectorType = dealii::TrilinosWrappers::MPI::Vector;
 
-  /// Encodes A (kept by reference for the remainder's maps until the next initialize()).
+  /// Encodes A (its rows of lines that do not fit copied into the remainder; A is not kept).
   void initialize(const MatrixType &A, const std::vector<unsigned int> &line_start);
 
   /// dst = Ã src.
@@ -67,7 +67,7 @@ private:
   std::vector<std::size_t> value_offset;
   /// Slot by slot within each line: (2 A + 1) x (2 R + 1) slots (the neighbouring line k + a,
   /// a = -A .. A, and the offset d = -R .. R of the position on it), each the line's rows in
-  /// order; the diagonal's slot holds 0 (diagonal below).
+  /// order; the diagonal's slot holds 0 and is skipped (diagonal below).
   std::vector<float> values;
   std::vector<double> diagonal;
   unsigned int stencil_rows = 0;
