@@ -42,10 +42,11 @@ MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CO
 
 
 def run(sealfe, work, k, nr, nt, solver="cg-amg", cavitation="none", base=BASE, ranks=1, env=None,
-        command="solve"):
+        command="solve", extra=""):
     """One `sealfe solve` (or `command`, e.g. coefficients) of `base` on an nr x nt mesh of
     degree k (no error estimate, no fields), timed from outside; `env` replaces the environment
-    (default MPI_ENV)."""
+    (default MPI_ENV); `extra` is appended to the parameter file (the last `set` of an entry
+    wins: e.g. fields on)."""
     out = tempfile.mkdtemp(dir=work)
     if command == "coefficients":
         # `sealfe coefficients` has no film-model choice (it is the FE solve) and writes no fields
@@ -67,7 +68,7 @@ end
 """ + ("" if command == "coefficients" else """subsection Output
   set Write fields = false
 end
-""")
+""") + extra
     path = out + ".prm"
     open(path, "w").write(prm)
     t = time.perf_counter()
@@ -86,30 +87,33 @@ end
     # finer stages: those columns stay empty in its rows (operating_point_time holds the run)
     coefficients = command == "coefficients"
     stage = (lambda key: None) if coefficients else (lambda key: st.get(key, 0))
-    return {"dofs": s["dofs"], "ranks": ranks, "process_wall": round(wall, 3),
-            "inprocess": s.get("wall_time"), "setup": stage("setup"),
-            "assemble": stage("assemble"), "loads": stage("loads"),
-            "solve": stage("solve"), "cavitation_time": stage("cavitation"),
-            "linear_setup": stage("linear solver setup"),
-            "operating_point_time": st.get("solve") if coefficients else None,
-            "cg_iterations": ls.get("krylov_iterations"), "method": ls.get("method"),
-            "factorizations": ls.get("factorizations"),
-            "workspace_retries": ls.get("workspace_retries"),
-            "newton": cav.get("nonlinear_iterations"),
-            "newton_steps": cav.get("newton_steps"),
-            "active_set_rounds": cav.get("active_set_rounds"),
-            "coarse_factorizations": cav.get("coarse_level_factorizations"),
-            "band_factorizations": cav.get("band_factorizations"),
-            "low_rank_updates": cav.get("low_rank_updates"),
-            "band_workspace_retries": cav.get("band_workspace_retries"),
-            "coarse_workspace_retries": cav.get("coarse_level_workspace_retries"),
-            "coefficients_time": st.get("coefficients"),
-            "coefficient_cost_ratio": s.get("coefficient_cost_ratio"),
-            "coefficient_solves": coefficient_solves.get("solves"),
-            "coefficient_cg_max": coefficient_solves.get("max_krylov_iterations"),
-            "coefficient_cg_total": coefficient_solves.get("krylov_iterations"),
-            "force_z": s["force_z"], "moment_x": s["moment_x"],
-            "blas_kernels": s.get("blas_kernels", {}).get("kernels")}
+    row = {"dofs": s["dofs"], "ranks": ranks, "process_wall": round(wall, 3),
+           "inprocess": s.get("wall_time"), "setup": stage("setup"),
+           "assemble": stage("assemble"), "loads": stage("loads"),
+           "solve": stage("solve"), "cavitation_time": stage("cavitation"),
+           "linear_setup": stage("linear solver setup"),
+           "operating_point_time": st.get("solve") if coefficients else None,
+           "cg_iterations": ls.get("krylov_iterations"), "method": ls.get("method"),
+           "factorizations": ls.get("factorizations"),
+           "workspace_retries": ls.get("workspace_retries"),
+           "newton": cav.get("nonlinear_iterations"),
+           "newton_steps": cav.get("newton_steps"),
+           "active_set_rounds": cav.get("active_set_rounds"),
+           "coarse_factorizations": cav.get("coarse_level_factorizations"),
+           "band_factorizations": cav.get("band_factorizations"),
+           "low_rank_updates": cav.get("low_rank_updates"),
+           "band_workspace_retries": cav.get("band_workspace_retries"),
+           "coarse_workspace_retries": cav.get("coarse_level_workspace_retries"),
+           "coefficients_time": st.get("coefficients"),
+           "coefficient_cost_ratio": s.get("coefficient_cost_ratio"),
+           "coefficient_solves": coefficient_solves.get("solves"),
+           "coefficient_cg_max": coefficient_solves.get("max_krylov_iterations"),
+           "coefficient_cg_total": coefficient_solves.get("krylov_iterations"),
+           "force_z": s["force_z"], "moment_x": s["moment_x"],
+           "blas_kernels": s.get("blas_kernels", {}).get("kernels")}
+    if "output" in st:  # fields written (extra): the time of writing them
+        row["output_time"] = st["output"]
+    return row
 
 
 def cpu_name():
