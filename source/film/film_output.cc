@@ -7,12 +7,14 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <algorithm>
 #include <array>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -443,13 +445,22 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
     else
       data_out.add_data_vector(*set.vector, set.name);
   const output::VtuFields vtu_fields = data_out.fields();
+  // The patches are drawn with a mapping of the element's degree k: the lattice (i/k, j/k) of a
+  // patch is then that mapping's support points, which lie on the circles (and on the steps of
+  // a mesh aligned to surface features). The solve's mapping of degree k + 1 interpolates the
+  // circles between its own support points and puts the lattice's mid-edge points ~1e-7 m off
+  // them (Rayleigh pads, 40 cells around), on the other side of a step on a circle.
+  std::optional<MappingQ<2>> element_degree_mapping;
+  const Mapping<2> &mapping = s.settings.mapping_degree() == s.polynomial_degree
+                                  ? static_cast<const Mapping<2> &>(*s.mapping)
+                                  : element_degree_mapping.emplace(s.polynomial_degree);
   std::vector<DataOutBase::Patch<2, 2>> polar;
   const bool use_polar_rows = s.assembles_on_polar_rows();
   if (use_polar_rows)
-    polar = polar_patches(s.dof_handler, *s.mapping, s.polynomial_degree, sets, postprocessor,
+    polar = polar_patches(s.dof_handler, mapping, s.polynomial_degree, sets, postprocessor,
                           vtu_fields.names.size());
   else
-    data_out.build_patches(*s.mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
+    data_out.build_patches(mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
   const std::vector<DataOutBase::Patch<2, 2>> &patches =
       use_polar_rows ? polar : data_out.get_patches();
   // Each rank writes its own piece, LZ4-compressed raw binary (output::write_vtu_piece, several

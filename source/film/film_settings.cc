@@ -24,7 +24,14 @@ void FilmSettings::declare_solver_parameters(ParameterHandler &prm)
   AsperityContact::declare_parameters(prm);
   prm.enter_subsection("Discretization");
   prm.declare_entry("Polynomial degree", "2", Patterns::Integer(1, 6),
-                    "Degree k of the continuous Lagrange elements (and of the curved mapping).");
+                    "Degree k of the continuous Lagrange elements.");
+  prm.declare_entry(
+      "Mapping degree", "k+1", Patterns::Selection("k+1|k|1|2|3|4|5|6|7|8"),
+      "Degree of the curved mapping that draws the cells on the circles: k+1 (one above the "
+      "element degree k), k, or a number. The circumferential error of the loads falls like "
+      "dtheta^(2m) for a mapping of degree m, so with m = k it is as large as the element's own "
+      "error and with m = k + 1 it is negligible from about 16 cells around on smooth films, "
+      "where far fewer cells around then reach the same accuracy (doc/reynolds.md).");
   prm.declare_entry("Linear solver", "auto", Patterns::Selection("auto|direct|cg-amg|cg-gmg"),
                     "auto: sparse direct (KLU or MUMPS) below 150000 unknowns; above, CG with "
                     "geometric multigrid on the levels of the built-in mesh (cg-gmg), or with "
@@ -56,6 +63,9 @@ void FilmSettings::parse_solver_parameters(ParameterHandler &prm)
   contact.parse_parameters(prm, flow_factors.composite_roughness());
   prm.enter_subsection("Discretization");
   polynomial_degree = prm.get_integer("Polynomial degree");
+  const std::string m = prm.get("Mapping degree");
+  mapping_degree_above_element = m == "k+1" ? 1 : m == "k" ? 0 : -1;
+  fixed_mapping_degree = mapping_degree_above_element < 0 ? std::stoi(m) : 0;
   const std::string s = prm.get("Linear solver");
   linear_solver = (s == "direct")   ? LinearSolver::direct
                   : (s == "cg-amg") ? LinearSolver::cg_amg
@@ -173,6 +183,7 @@ bool FilmSettings::same_discretization(const FilmSettings &other, const unsigned
                                         geometry.coning == other.geometry.coning);
   return same_mesh && same_grading && same_features && coarsening == other_coarsening &&
          polynomial_degree == other.polynomial_degree &&
+         mapping_degree() == other.mapping_degree() &&
          geometry.inner_radius == other.geometry.inner_radius &&
          geometry.outer_radius == other.geometry.outer_radius;
 }

@@ -96,8 +96,8 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   // point): computed once per mesh and shared by the assembly, the loads, the support points of
   // the AMG and the field output, instead of once per cell in each of them. The same points as
   // MappingQ's, so the same geometry.
-  auto cached = std::make_unique<MappingQCache<2>>(polynomial_degree);
-  cached->initialize(MappingQ<2>(polynomial_degree), triangulation);
+  auto cached = std::make_unique<MappingQCache<2>>(settings.mapping_degree());
+  cached->initialize(MappingQ<2>(settings.mapping_degree()), triangulation);
   mapping = std::move(cached);
   lap("setup: mapping cache");
   dof_handler.distribute_dofs(*fe);

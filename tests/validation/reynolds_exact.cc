@@ -206,3 +206,66 @@ TEST_P(ManufacturedOrder, L2ErrorConvergesAtOrderKPlusOne)
 }
 
 INSTANTIATE_TEST_SUITE_P(Degrees, ManufacturedOrder, ::testing::Values(1u, 2u, 3u));
+
+namespace
+{
+/// force_z and moment_x of the tilted default seal (eps = 0.5) on Nr x Ntheta cells, Q_k
+/// elements and a mapping of degree k + `above` (Mapping degree = k or k+1).
+std::pair<double, double> tilted_loads(const unsigned int k, const int above,
+                                       const unsigned int radial, const unsigned int around)
+{
+  FilmThickness film = default_film();
+  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  OperatingConditions conditions;
+  ReynoldsSolver solver(MPI_COMM_WORLD);
+  solver.polynomial_degree = k;
+  solver.settings.mapping_degree_above_element = above;
+  solver.linear_solver = ReynoldsSolver::LinearSolver::direct;
+  solver.mesh().radial_cells = radial;
+  solver.mesh().circumferential_cells = around;
+  const FilmLoads loads = solver.run(film, conditions);
+  return {loads.force_z, loads.moment_x};
+}
+} // namespace
+
+struct CircumferentialCase
+{
+  unsigned int k;
+  int above; // mapping degree m = k + above
+};
+
+class CircumferentialOrder : public ::testing::TestWithParam<CircumferentialCase>
+{
+};
+
+// The mapping draws each cell by interpolating the polar map at the m + 1 Gauss-Lobatto points
+// of each direction. Around the annulus the integral of a smooth function over the cells so
+// drawn is then the (m + 1)-point Gauss-Lobatto rule of that integral in theta, exact to degree
+// 2m - 1: the geometry adds an error O(dtheta^(2m)) to the loads. With m = k it is of the order
+// 2k of the elements' own error of a load, and on this film (whose pressure varies like
+// cos(theta) around) it is the larger of the two; with m = k + 1 it falls at order 2k + 2 and
+// the element's error, which the radial cells set, is what is left (benchmarks/mapping_degree).
+// At fixed Nr the radial error is the same on every mesh, so the differences of a load between
+// Ntheta = 8, 16, 32 cancel it and log2 of their ratio is the order in dtheta.
+TEST_P(CircumferentialOrder, ForceErrorFallsAtTwiceTheMappingDegree)
+{
+  const auto [k, above] = GetParam();
+  const unsigned int m = k + above;
+  std::vector<double> force;
+  for (const unsigned int around : {8u, 16u, 32u})
+    force.push_back(tilted_loads(k, above, 8, around).first);
+  const double order = std::log2(std::abs((force[0] - force[1]) / (force[1] - force[2])));
+  std::cout << "k = " << k << ", mapping degree " << m << ": force_z " << force[0] << " "
+            << force[1] << " " << force[2] << ", order in dtheta " << order << "\n";
+  // 0.3 of an order: the pre-asymptotic part of the coarsest pair (8 cells around)
+  EXPECT_NEAR(order, 2.0 * m, 0.3);
+}
+
+INSTANTIATE_TEST_SUITE_P(MappingDegrees, CircumferentialOrder,
+                         ::testing::Values(CircumferentialCase{1, 1}, CircumferentialCase{2, 0},
+                                           CircumferentialCase{2, 1}, CircumferentialCase{3, 1}),
+                         [](const auto &info)
+                         {
+                           return "k" + std::to_string(info.param.k) + "_mapping" +
+                                  std::to_string(info.param.k + info.param.above);
+                         });

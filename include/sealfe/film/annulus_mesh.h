@@ -12,8 +12,8 @@
 namespace sealfe
 {
 /// Reads subsection "Discretization" (mesh part) and builds the annulus mesh. Cells carry a
-/// PolarManifold about the origin so that refinement and a MappingQ of the element's degree
-/// follow the circles exactly.
+/// PolarManifold about the origin so that refinement and the curved mapping (MappingQ, of the
+/// degree FilmSettings::mapping_degree()) follow the circles.
 class AnnulusMesh
 {
 public:

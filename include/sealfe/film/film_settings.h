@@ -61,6 +61,16 @@ struct FilmSettings
 
   AnnulusMesh mesh;
   unsigned int polynomial_degree = 2;
+  /// Mapping degree: the element degree plus mapping_degree_above_element (1 or 0: the prm's
+  /// "k+1" and "k"), or fixed_mapping_degree where that is -1.
+  int mapping_degree_above_element = 1;
+  unsigned int fixed_mapping_degree = 0;
+  /// Degree of the mapping of the cells onto the polar geometry.
+  unsigned int mapping_degree() const
+  {
+    return mapping_degree_above_element < 0 ? fixed_mapping_degree
+                                            : polynomial_degree + mapping_degree_above_element;
+  }
   LinearSolver linear_solver = LinearSolver::automatic;
   double solver_tolerance = 1e-12;
   /// Estimate the discretisation error of the loads by a second solve on a 2x coarser mesh.
