@@ -278,6 +278,7 @@ nlohmann::json finite_element_solve_summary(const FilmSettings &settings,
   summary["model"] = "finite element";
   summary["dofs"] = solver.n_dofs();
   summary["polynomial_degree"] = solver.degree();
+  summary["mapping_degree"] = solver.settings.mapping_degree();
   summary["linear_iterations"] = solver.linear_iterations();
   const FilmLinearSolver &linear = solver.linear_solver_statistics();
   summary["linear_solver"] =
