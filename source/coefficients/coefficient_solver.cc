@@ -215,6 +215,7 @@ nlohmann::json CoefficientResult::to_json() const
                                     {"tilt_rate", steps.tilt_rate}};
   j["dofs"] = dofs;
   j["polynomial_degree"] = degree;
+  j["mapping_degree"] = mapping_degree;
   j["units"] = {{"stiffness",
                  {{"N/m", "N/rad", "N/rad"},
                   {"N m/m", "N m/rad", "N m/rad"},
@@ -420,6 +421,7 @@ CoefficientResult CoefficientSolver::compute(const FilmThickness &film,
   r.direct_package = solver.linear_solver_statistics().direct_package();
   r.dofs = solver.n_dofs();
   r.degree = solver.degree();
+  r.mapping_degree = solver.settings.mapping_degree();
 
   if (r.has_error_estimate)
   {

@@ -255,9 +255,9 @@ bool ReynoldsSolver::coarse_values_on_polar_grid(const std::vector<Point<2>> &po
     return false;
   // The built-in mesh is a tensor grid in (r, theta): radial nodes (graded) and nt equal angles.
   // Its cells are found from a point's polar coordinates; the reference coordinates inside the
-  // cell are those of the polar rectangle, which the cell's mapping follows up to its O(h^3)
-  // departure from the circles: far below the discretisation error, and this is only the start
-  // of the Newton iteration on the finer mesh.
+  // cell are those of the polar rectangle, which the cell's mapping (degree m) follows up to its
+  // O(h^(m+1)) departure from the circles: far below the discretisation error, and this is only the
+  // start of the Newton iteration on the finer mesh.
   const auto &tria = coarse.dof_handler.get_triangulation();
   std::vector<double> radii;
   for (const Point<2> &v : tria.get_vertices())

@@ -64,7 +64,9 @@ RadialLines find_radial_lines(const DoFHandler<2> &dof_handler, const Mapping<2>
       if (owned.is_element(dofs[i]) && key[owned.index_within_set(dofs[i])].first < 0)
       {
         const Point<2> &x = fe_values.quadrature_point(i);
-        // angles are multiples of 2 pi / (k N_theta): 2^24 keys a turn separate them
+        // k angles per cell around, the same along a radial line (the mapping is a tensor product
+        // of its radial and angular interpolations), ~2 pi / (k N_theta) apart: 2^24 keys a turn
+        // separate them
         double turns = std::atan2(x[1], x[0]) / (2 * M_PI);
         if (turns < 0)
           turns += 1;

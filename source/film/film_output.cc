@@ -445,11 +445,13 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
     else
       data_out.add_data_vector(*set.vector, set.name);
   const output::VtuFields vtu_fields = data_out.fields();
-  // The patches are drawn with a mapping of the element's degree k: the lattice (i/k, j/k) of a
-  // patch is then that mapping's support points, which lie on the circles (and on the steps of
-  // a mesh aligned to surface features). The solve's mapping of degree k + 1 interpolates the
-  // circles between its own support points and puts the lattice's mid-edge points ~1e-7 m off
-  // them (Rayleigh pads, 40 cells around), on the other side of a step on a circle.
+  // The patches are drawn with a mapping of the element's degree k, as before the mapping of
+  // the solve could be of higher degree: for k <= 2 the equidistant lattice (i/k, j/k) of a
+  // patch is then that mapping's (Gauss-Lobatto) support points, which lie on the circles (and
+  // on the steps of a mesh aligned to surface features). The solve's mapping of degree k + 1
+  // interpolates the circles between its own support points and puts the lattice's mid-edge
+  // points ~1e-7 m off them (Rayleigh pads, 40 cells around), on the other side of a step on a
+  // circle. For k >= 3 the lattice's inner points are not support points of either mapping.
   std::optional<MappingQ<2>> element_degree_mapping;
   const Mapping<2> &mapping = s.settings.mapping_degree() == s.polynomial_degree
                                   ? static_cast<const Mapping<2> &>(*s.mapping)

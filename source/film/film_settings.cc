@@ -28,10 +28,10 @@ void FilmSettings::declare_solver_parameters(ParameterHandler &prm)
   prm.declare_entry(
       "Mapping degree", "k+1", Patterns::Selection("k+1|k|1|2|3|4|5|6|7|8"),
       "Degree of the curved mapping that draws the cells on the circles: k+1 (one above the "
-      "element degree k), k, or a number. The circumferential error of the loads falls like "
-      "dtheta^(2m) for a mapping of degree m, so with m = k it is as large as the element's own "
-      "error and with m = k + 1 it is negligible from about 16 cells around on smooth films, "
-      "where far fewer cells around then reach the same accuracy (doc/reynolds.md).");
+      "element degree k), k, or a number not below k. The mapping's share of the error of the "
+      "loads falls like dtheta^(2m) around the annulus: with m = k it is of the elements' own "
+      "order and on a smooth film the larger part; with m = k + 1 it is negligible from about "
+      "16 cells around, and far fewer cells around reach the same accuracy (doc/reynolds.md).");
   prm.declare_entry("Linear solver", "auto", Patterns::Selection("auto|direct|cg-amg|cg-gmg"),
                     "auto: sparse direct (KLU or MUMPS) below 150000 unknowns; above, CG with "
                     "geometric multigrid on the levels of the built-in mesh (cg-gmg), or with "

@@ -741,6 +741,15 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   conditions.validate();
   if (coarsening == 0) // before anything is allocated
   {
+    // Below the element degree the circumferential error of the loads would fall at 2m < 2k,
+    // which the error estimates (at the elements' order) do not bound.
+    if (settings.mapping_degree() < settings.polynomial_degree)
+      throw std::runtime_error(
+          "Mapping degree " + std::to_string(settings.mapping_degree()) +
+          " is below the Polynomial degree " + std::to_string(settings.polynomial_degree) +
+          ": the error estimate would not bound the circumferential error; use k, k+1 or a "
+          "number >= " +
+          std::to_string(settings.polynomial_degree));
     settings.mesh.check_memory(settings.polynomial_degree, film.inner_radius, film.outer_radius);
     if (film.wave_amplitude != 0)
       settings.mesh.check_resolves_waves(film.wave_number, settings.polynomial_degree);

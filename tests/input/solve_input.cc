@@ -155,6 +155,15 @@ TEST(SolveInput, NonIntegerWaveNumber)
                  "Wave number must be a whole number");
 }
 
+TEST(SolveInput, MappingBelowTheElementDegree)
+{
+  // a mapping of degree 1 under Q2 elements: its circumferential error (order 2) would not be
+  // bounded by the error estimate (order of the elements)
+  const fs::path d = work_dir();
+  expect_refused(d, run_case(d, "subsection Discretization\n  set Mapping degree = 1\nend\n"),
+                 "Mapping degree 1 is below the Polynomial degree 2");
+}
+
 TEST(SolveInput, MoreWavesThanTheMeshResolves)
 {
   // 1e4 waves on 128 cells of degree 2: 0.0256 nodes per wave

@@ -241,12 +241,14 @@ class CircumferentialOrder : public ::testing::TestWithParam<CircumferentialCase
 // The mapping draws each cell by interpolating the polar map at the m + 1 Gauss-Lobatto points
 // of each direction. Around the annulus the integral of a smooth function over the cells so
 // drawn is then the (m + 1)-point Gauss-Lobatto rule of that integral in theta, exact to degree
-// 2m - 1: the geometry adds an error O(dtheta^(2m)) to the loads. With m = k it is of the order
-// 2k of the elements' own error of a load, and on this film (whose pressure varies like
-// cos(theta) around) it is the larger of the two; with m = k + 1 it falls at order 2k + 2 and
-// the element's error, which the radial cells set, is what is left (benchmarks/mapping_degree).
-// At fixed Nr the radial error is the same on every mesh, so the differences of a load between
-// Ntheta = 8, 16, 32 cancel it and log2 of their ratio is the order in dtheta.
+// 2m - 1: the geometry's share of the error of a load is O(dtheta^(2m)). The elements have a
+// circumferential error of their own, of order 2k. With m = k both are of order 2k; with
+// m = k + 1 the geometry's falls at 2k + 2, and on this film (whose pressure varies like
+// cos(theta) around) it is still the larger part of the force's error from 8 to 32 cells around
+// (the elements' own takes over later: order 4.4 between 64 and 256 cells for Q2,
+// benchmarks/mapping_degree). At fixed Nr the radial error is the same on every mesh, so the
+// differences of a load between Ntheta = 8, 16, 32 cancel it and log2 of their ratio is the order
+// in dtheta. A mapping left at degree k would give 2k and fail the cases m = k + 1.
 TEST_P(CircumferentialOrder, ForceErrorFallsAtTwiceTheMappingDegree)
 {
   const auto [k, above] = GetParam();
@@ -263,7 +265,7 @@ TEST_P(CircumferentialOrder, ForceErrorFallsAtTwiceTheMappingDegree)
 
 INSTANTIATE_TEST_SUITE_P(MappingDegrees, CircumferentialOrder,
                          ::testing::Values(CircumferentialCase{1, 1}, CircumferentialCase{2, 0},
-                                           CircumferentialCase{2, 1}, CircumferentialCase{3, 1}),
+                                           CircumferentialCase{2, 1}),
                          [](const auto &info)
                          {
                            return "k" + std::to_string(info.param.k) + "_mapping" +

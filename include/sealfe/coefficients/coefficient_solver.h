@@ -88,9 +88,10 @@ struct CoefficientResult
   std::string linearization;          // what the method does at the cavitation boundary
   dealii::types::global_dof_index dofs = 0;
   unsigned int degree = 0;
-  double solve_time = 0;          // s, the operating-point solve (setup, assembly, factorisation)
-  double coefficient_time = 0;    // s, the linearised (or adjoint, or 12 perturbed) solves
-  double error_estimate_time = 0; // s, everything on the coarse mesh
+  unsigned int mapping_degree = 0; // of the curved mapping (Mapping degree)
+  double solve_time = 0;           // s, the operating-point solve (setup, assembly, factorisation)
+  double coefficient_time = 0;     // s, the linearised (or adjoint, or 12 perturbed) solves
+  double error_estimate_time = 0;  // s, everything on the coarse mesh
 
   /// The linear solver on the fine mesh: its method and direct package, and its work for the
   /// operating-point solve (summary.json `linear_solver`, as `sealfe solve` reports it) and for

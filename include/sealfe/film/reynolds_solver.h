@@ -42,13 +42,14 @@ class PolarCellValues;
 ///
 ///   div( h^3/(12 mu) grad p ) = div( h u_mean ) + dh/dt (+ f),   u_mean = (w1 + w2)/2 * r e_theta
 ///
-/// with p = pi on r = ri and p = po on r = ro, by continuous Q_k elements on a curved (MappingQ_k)
-/// mesh. The equation is scaled by 12 mu / C0^3 so that the matrix is O(1) and solver tolerances
-/// are relative. Leakage is the consistent (residual) boundary flux, so the two leakages balance
-/// to solver tolerance. All inputs are one FilmSettings. The mesh, degrees of freedom, sparsity
-/// pattern and zero-Dirichlet constraints are built once and reused by every run() whose
-/// settings give the same discretisation (FilmSettings::same_discretization): a transient or a
-/// sweep changing z, tilts, rates, speeds or pressures only assembles and solves again.
+/// with p = pi on r = ri and p = po on r = ro, by continuous Q_k elements on a curved mesh
+/// (MappingQ of degree FilmSettings::mapping_degree(), k + 1 by default). The equation is scaled by
+/// 12 mu / C0^3 so that the matrix is O(1) and solver tolerances are relative. Leakage is the
+/// consistent (residual) boundary flux, so the two leakages balance to solver tolerance. All inputs
+/// are one FilmSettings. The mesh, degrees of freedom, sparsity pattern and zero-Dirichlet
+/// constraints are built once and reused by every run() whose settings give the same discretisation
+/// (FilmSettings::same_discretization): a transient or a sweep changing z, tilts, rates, speeds or
+/// pressures only assembles and solves again.
 class ReynoldsSolver
 {
 public:
