@@ -180,8 +180,8 @@ TEST(LocalFilm, PolarCellValuesPathEqualsFilmThicknessFormulasOnEveryCell)
     m.create(tria, ri, ro, 0);
     const unsigned int degree = s.polynomial_degree;
     const FE_Q<2> fe(degree);
-    MappingQCache<2> mapping(degree);
-    mapping.initialize(MappingQ<2>(degree), tria);
+    MappingQCache<2> mapping(s.mapping_degree());
+    mapping.initialize(MappingQ<2>(s.mapping_degree()), tria);
     PolarCellValues polar(mapping, fe, QGauss<2>(degree + 2));
     const double cos_tilt = std::cos(g.tilt_angle), sin_tilt = std::sin(g.tilt_angle);
     double worst_h = 0, worst_squeeze = 0, worst_div = 0, worst_one_point = 0;
