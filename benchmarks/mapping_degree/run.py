@@ -7,52 +7,37 @@ The tilted Varney & Green seal of benchmarks/reynolds_speed/case.prm (full film,
 solved for degrees k = 1, 2, 3 with the mapping of degree m = k and m = k + 1 (`Mapping degree`)
 on every mesh Nr x Ntheta with Nr in 4..64 and Ntheta in 8..256 (up to 2e5 dofs, direct solver).
 The error is the relative error of force_z and moment_x against the Richardson reference of
-benchmarks/reynolds_speed (degree 3, accurate to 1.6e-12 and 1.4e-11). Writes, next to this
-script, mapping_degree.csv (one row per run), mapping_degree.png (the error against the cells
+benchmarks/reynolds_speed (results.json: degree 3, accurate to 1.6e-12 and 1.4e-11). Each run is
+the scaling benchmark's `run()` (benchmarks/scaling/run.py) with `Mapping degree` appended.
+Writes, next to this script, mapping_degree.csv (one row per run), mapping_degree.png (the error against the cells
 around, one line per Nr and mapping degree) and prints:
 - the circumferential order: at fixed Nr the differences of a load between Ntheta, 2 Ntheta and
   4 Ntheta cancel the radial error, and log2 of their ratio is the order of the error in dtheta;
 - the fewest dofs that reach 1e-4, 1e-6 and 1e-8 in both loads, per k and m.
-About a minute on the 2-core machine (about 300 short runs).
+180 short runs, 80 s on the 2-core machine.
 """
-import argparse, csv, json, math, os, shutil, subprocess, tempfile
+import argparse, csv, json, math, os, shutil, sys, tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-CASE = open(os.path.join(REPO, "benchmarks", "reynolds_speed", "case.prm")).read()
-# Richardson reference of benchmarks/reynolds_speed (doc/performance.md, "Reference values")
-FORCE_REF, MOMENT_REF = 444.937403517314, 5.685917777507
+sys.path.insert(0, os.path.join(HERE, "..", "scaling"))
+from run import REPO, run  # noqa: E402  (the scaling benchmark's single run of case.prm)
+
+# the Richardson reference of benchmarks/reynolds_speed (doc/performance.md, "Reference values")
+REFERENCE = json.load(open(os.path.join(REPO, "benchmarks", "reynolds_speed",
+                                        "results.json")))["reference"]
 RADIAL, AROUND = (4, 8, 16, 32, 64), (8, 16, 32, 64, 128, 256)
 TARGETS = (1e-4, 1e-6, 1e-8)
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_pml="ob1")
 
 
 def solve(sealfe, work, k, m, nr, nt):
-    out = tempfile.mkdtemp(dir=work)
-    prm = os.path.join(out, "case.prm")
-    open(prm, "w").write(CASE + f"""
-set Output directory = {out}
-subsection Discretization
-  set Polynomial degree = {k}
-  set Mapping degree = {m}
-  set Radial cells = {nr}
-  set Circumferential cells = {nt}
-  set Linear solver = direct
-  set Error estimate = false
-end
-subsection Output
-  set Write fields = false
-end
-""")
-    r = subprocess.run([sealfe, "solve", prm], capture_output=True, text=True, env=ENV)
-    if r.returncode:
-        raise RuntimeError(r.stderr.strip())
-    s = json.load(open(os.path.join(out, "summary.json")))
-    shutil.rmtree(out, ignore_errors=True)
-    return {"k": k, "m": m, "nr": nr, "nt": nt, "dofs": s["dofs"], "force_z": s["force_z"],
-            "moment_x": s["moment_x"], "force_error": s["force_z"] / FORCE_REF - 1,
-            "moment_error": s["moment_x"] / MOMENT_REF - 1, "wall_time": s["wall_time"]}
+    r = run(sealfe, work, k, nr, nt, solver="direct",
+            extra=f"subsection Discretization\n  set Mapping degree = {m}\nend\n")
+    if "error" in r:
+        raise RuntimeError(r["error"])
+    return {"k": k, "m": m, "nr": nr, "nt": nt, "dofs": r["dofs"], "force_z": r["force_z"],
+            "moment_x": r["moment_x"], "force_error": r["force_z"] / REFERENCE["force_z"] - 1,
+            "moment_error": r["moment_x"] / REFERENCE["moment_x"] - 1,
+            "wall_time": r["inprocess"]}
 
 
 def error(r):

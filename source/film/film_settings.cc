@@ -64,8 +64,10 @@ void FilmSettings::parse_solver_parameters(ParameterHandler &prm)
   prm.enter_subsection("Discretization");
   polynomial_degree = prm.get_integer("Polynomial degree");
   const std::string m = prm.get("Mapping degree");
-  mapping_degree_above_element = m == "k+1" ? 1 : m == "k" ? 0 : -1;
-  fixed_mapping_degree = mapping_degree_above_element < 0 ? std::stoi(m) : 0;
+  mapping_degree_above_element = m == "k+1" ? 1 : 0;
+  fixed_mapping_degree.reset();
+  if (m != "k+1" && m != "k")
+    fixed_mapping_degree = std::stoi(m);
   const std::string s = prm.get("Linear solver");
   linear_solver = (s == "direct")   ? LinearSolver::direct
                   : (s == "cg-amg") ? LinearSolver::cg_amg

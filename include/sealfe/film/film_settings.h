@@ -12,6 +12,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,15 +62,14 @@ struct FilmSettings
 
   AnnulusMesh mesh;
   unsigned int polynomial_degree = 2;
-  /// Mapping degree: the element degree plus mapping_degree_above_element (1 or 0: the prm's
-  /// "k+1" and "k"), or fixed_mapping_degree where that is -1.
-  int mapping_degree_above_element = 1;
-  unsigned int fixed_mapping_degree = 0;
+  /// The prm's Mapping degree: a number (fixed_mapping_degree), or the element degree plus
+  /// mapping_degree_above_element ("k+1": 1, "k": 0).
+  std::optional<unsigned int> fixed_mapping_degree;
+  unsigned int mapping_degree_above_element = 1;
   /// Degree of the mapping of the cells onto the polar geometry.
   unsigned int mapping_degree() const
   {
-    return mapping_degree_above_element < 0 ? fixed_mapping_degree
-                                            : polynomial_degree + mapping_degree_above_element;
+    return fixed_mapping_degree.value_or(polynomial_degree + mapping_degree_above_element);
   }
   LinearSolver linear_solver = LinearSolver::automatic;
   double solver_tolerance = 1e-12;
