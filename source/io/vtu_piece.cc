@@ -78,15 +78,15 @@ private:
 /// One point array of a piece: its name, its number of components (3 for a 2D vector, padded
 /// with 0), and the first of its data sets. Vectors first, then the scalars, in data-set order:
 /// the order of the piece's arrays and of the .pvtu record's.
-struct PointArray
+struct ArrayLayout
 {
   std::string name;
   unsigned int components, first_set;
 };
 
-std::vector<PointArray> point_arrays(const VtuFields &fields)
+std::vector<ArrayLayout> array_layouts(const VtuFields &fields)
 {
-  std::vector<PointArray> arrays;
+  std::vector<ArrayLayout> arrays;
   std::vector<bool> in_vector(fields.names.size(), false);
   for (const auto &[first, name] : fields.vectors)
   {
@@ -112,88 +112,100 @@ std::string data_array(const std::string &type, const std::string &name,
 }
 } // namespace
 
-void write_vtu_piece(std::ostream &out,
-                     const std::vector<dealii::DataOutBase::Patch<2, 2>> &patches,
-                     const VtuFields &fields,
-                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data,
-                     const double rotation)
+VtuPieceArrays::VtuPieceArrays(const VtuFields &fields, const std::size_t n_cells,
+                               const unsigned int n_subdivisions, const double rotation)
+    : cells(n_cells), order(n_subdivisions),
+      points_per_cell((n_subdivisions + 1) * (n_subdivisions + 1)), n_sets(fields.names.size()),
+      cos_r(std::cos(rotation)), sin_r(std::sin(rotation))
 {
-  const double cos_r = std::cos(rotation), sin_r = std::sin(rotation);
-  const unsigned int n_sets = fields.names.size();
-  std::size_t n_points = 0;
-  for (const auto &patch : patches)
-    n_points += (patch.n_subdivisions + 1) * (patch.n_subdivisions + 1);
-  if (n_points > std::size_t(std::numeric_limits<std::int32_t>::max()))
+  if (n_points() > std::size_t(std::numeric_limits<std::int32_t>::max()))
     throw std::runtime_error("VTU output: more points than a 32-bit connectivity can name");
+  point_coordinates.resize(3 * n_points());
+  for (const ArrayLayout &array : array_layouts(fields))
+    arrays.push_back({array.name, array.components, array.first_set,
+                      std::vector<float>(array.components * n_points())});
+}
 
-  // points (patch coordinates if curved, else bilinear between the vertices), connectivity in
-  // VTK's node order, offsets, cell types
-  std::vector<float> points;
-  points.reserve(3 * n_points);
-  std::vector<std::int32_t> connectivity, offsets;
-  connectivity.reserve(n_points);
-  offsets.reserve(patches.size());
-  std::vector<std::uint8_t> types(patches.size(), 70 /* VTK_LAGRANGE_QUADRILATERAL */);
-  std::size_t first = 0;
-  for (const auto &patch : patches)
-  {
-    const unsigned int n = patch.n_subdivisions, per_row = n + 1;
-    for (unsigned int j = 0; j <= n; ++j)
-      for (unsigned int i = 0; i <= n; ++i)
+void VtuPieceArrays::set_cell(const std::size_t cell, const dealii::DataOutBase::Patch<2, 2> &patch)
+{
+  const unsigned int n = patch.n_subdivisions, per_row = n + 1;
+  if (n != order || cell >= cells)
+    throw std::runtime_error("VTU output: a patch of " + std::to_string(n) +
+                             " subdivisions as cell " + std::to_string(cell) + " of a piece of " +
+                             std::to_string(cells) + " cells of " + std::to_string(order));
+  const std::size_t first = cell * points_per_cell;
+  float *point = point_coordinates.data() + 3 * first;
+  for (unsigned int j = 0; j <= n; ++j)
+    for (unsigned int i = 0; i <= n; ++i, point += 3)
+    {
+      double x, y;
+      if (patch.points_are_available)
       {
-        double x, y;
-        if (patch.points_are_available)
-        {
-          x = patch.data(n_sets, i + j * per_row);
-          y = patch.data(n_sets + 1, i + j * per_row);
-        }
-        else
-        {
-          const double u = double(i) / n, v = double(j) / n;
-          const auto p = (1 - u) * (1 - v) * patch.vertices[0] + u * (1 - v) * patch.vertices[1] +
-                         (1 - u) * v * patch.vertices[2] + u * v * patch.vertices[3];
-          x = p[0];
-          y = p[1];
-        }
-        points.insert(points.end(),
-                      {float(cos_r * x - sin_r * y), float(sin_r * x + cos_r * y), 0.0f});
+        x = patch.data(n_sets, i + j * per_row);
+        y = patch.data(n_sets + 1, i + j * per_row);
       }
-    std::vector<std::int32_t> cell(per_row * per_row);
-    for (unsigned int j = 0; j <= n; ++j)
-      for (unsigned int i = 0; i <= n; ++i)
-        cell[vtk_node_index(i, j, n)] = std::int32_t(first + i + j * per_row);
-    connectivity.insert(connectivity.end(), cell.begin(), cell.end());
-    first += cell.size();
-    offsets.push_back(std::int32_t(first));
+      else
+      {
+        const double u = double(i) / n, v = double(j) / n;
+        const auto p = (1 - u) * (1 - v) * patch.vertices[0] + u * (1 - v) * patch.vertices[1] +
+                       (1 - u) * v * patch.vertices[2] + u * v * patch.vertices[3];
+        x = p[0];
+        y = p[1];
+      }
+      point[0] = float(cos_r * x - sin_r * y);
+      point[1] = float(sin_r * x + cos_r * y);
+      point[2] = 0.0f;
+    }
+  for (PointArray &array : arrays)
+  {
+    const unsigned int set = array.first_set;
+    float *value = array.values.data() + array.components * first;
+    if (array.components == 1)
+      for (unsigned int q = 0; q < points_per_cell; ++q)
+        value[q] = patch.data(set, q);
+    else
+      for (unsigned int q = 0; q < points_per_cell; ++q, value += 3)
+      {
+        const double vx = patch.data(set, q), vy = patch.data(set + 1, q);
+        value[0] = float(cos_r * vx - sin_r * vy);
+        value[1] = float(sin_r * vx + cos_r * vy);
+        value[2] = 0.0f;
+      }
   }
+}
+
+void write_vtu_piece(std::ostream &out, const VtuPieceArrays &piece,
+                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data)
+{
+  // connectivity in VTK's node order, offsets, cell types
+  const unsigned int n = piece.n_subdivisions(), per_row = n + 1;
+  const std::size_t per_cell = per_row * per_row, n_cells = piece.n_cells();
+  std::vector<std::int32_t> node_of(per_cell);
+  for (unsigned int j = 0; j <= n; ++j)
+    for (unsigned int i = 0; i <= n; ++i)
+      node_of[vtk_node_index(i, j, n)] = std::int32_t(i + j * per_row);
+  std::vector<std::int32_t> connectivity(per_cell * n_cells), offsets(n_cells);
+  for (std::size_t c = 0; c < n_cells; ++c)
+  {
+    const std::int32_t first = std::int32_t(c * per_cell);
+    for (std::size_t k = 0; k < per_cell; ++k)
+      connectivity[c * per_cell + k] = first + node_of[k];
+    offsets[c] = std::int32_t(first + per_cell);
+  }
+  const std::vector<std::uint8_t> types(n_cells, 70 /* VTK_LAGRANGE_QUADRILATERAL */);
 
   AppendedData appended;
   std::string point_data, cell_arrays;
-  for (const PointArray &array : point_arrays(fields))
-  {
-    std::vector<float> values;
-    values.reserve(array.components * n_points);
-    const unsigned int set = array.first_set;
-    for (const auto &patch : patches)
-      for (unsigned int q = 0; q < patch.data.n_cols(); ++q)
-        if (array.components == 1)
-          values.push_back(patch.data(set, q));
-        else
-        {
-          const double vx = patch.data(set, q), vy = patch.data(set + 1, q);
-          values.insert(values.end(),
-                        {float(cos_r * vx - sin_r * vy), float(sin_r * vx + cos_r * vy), 0.0f});
-        }
-    point_data += data_array("Float32", array.name, array.components, appended.add(values));
-  }
+  for (const VtuPieceArrays::PointArray &array : piece.point_arrays())
+    point_data += data_array("Float32", array.name, array.components, appended.add(array.values));
   for (const auto &[name, values] : cell_data)
   {
-    if (values.size() != patches.size())
+    if (values.size() != n_cells)
       throw std::runtime_error("VTU output: cell array " + name + " has the wrong length");
     std::vector<std::int32_t> v(values.begin(), values.end());
     cell_arrays += data_array("Int32", name, 1, appended.add(v));
   }
-  const std::string points_array = data_array("Float32", "", 3, appended.add(points));
+  const std::string points_array = data_array("Float32", "", 3, appended.add(piece.points()));
   // one statement each: the arrays' order in the file does not depend on the compiler
   std::string cells = data_array("Int32", "connectivity", 1, appended.add(connectivity));
   cells += data_array("Int32", "offsets", 1, appended.add(offsets));
@@ -207,7 +219,7 @@ void write_vtu_piece(std::ostream &out,
       << (first_byte == 1 ? "LittleEndian" : "BigEndian")
       << "\" header_type=\"UInt64\" compressor=\"vtkLZ4DataCompressor\">\n"
       << "<UnstructuredGrid>\n"
-      << "<Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << patches.size()
+      << "<Piece NumberOfPoints=\"" << piece.n_points() << "\" NumberOfCells=\"" << n_cells
       << "\">\n"
       << "<PointData>\n"
       << point_data << "</PointData>\n"
@@ -222,6 +234,19 @@ void write_vtu_piece(std::ostream &out,
       << "<AppendedData encoding=\"raw\">\n_";
   out.write(appended.bytes().data(), std::streamsize(appended.bytes().size()));
   out << "\n</AppendedData>\n</VTKFile>\n";
+}
+
+void write_vtu_piece(std::ostream &out,
+                     const std::vector<dealii::DataOutBase::Patch<2, 2>> &patches,
+                     const VtuFields &fields,
+                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data,
+                     const double rotation)
+{
+  VtuPieceArrays piece(fields, patches.size(), patches.empty() ? 1 : patches.front().n_subdivisions,
+                       rotation);
+  for (std::size_t c = 0; c < patches.size(); ++c)
+    piece.set_cell(c, patches[c]);
+  write_vtu_piece(out, piece, cell_data);
 }
 VtuFields VtuFields::from(
     const std::vector<std::string> &names,
@@ -250,7 +275,7 @@ void write_pvtu_record(std::ostream &out, const VtuFields &fields,
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" header_type=\"UInt64\">\n"
       << "<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData>\n";
-  for (const PointArray &array : point_arrays(fields))
+  for (const ArrayLayout &array : array_layouts(fields))
     out << "<PDataArray type=\"Float32\" Name=\"" << array.name << "\" NumberOfComponents=\""
         << array.components << "\"/>\n";
   out << "</PPointData>\n<PCellData>\n";

@@ -33,12 +33,49 @@ struct VtuFields
   std::vector<std::pair<unsigned int, std::string>> vectors;
 };
 
-/// Writes `patches` (2D, any subdivision n: (n + 1)^2 points each, coordinates from the patch
-/// data when the patch is curved) as one VTU piece of VTK_LAGRANGE_QUADRILATERAL cells of order
-/// n, Float32 points and point data (2D vectors padded to 3 components), and each of
-/// `cell_data` as an Int32 cell array of one value per patch. The points and the vectors are
-/// turned by `rotation` (rad, counter-clockwise about z): a field computed in a turned frame is
-/// drawn in the frame of the picture.
+/// The arrays of one VTU piece as the file holds them, filled cell by cell from patches (2D, one
+/// subdivision n for all: (n + 1)^2 points each, coordinates from the patch data when the patch
+/// is curved, else bilinear between its vertices): Float32 points and point data, 2D vectors
+/// padded to 3 components, points and vectors turned by `rotation` (rad, counter-clockwise about
+/// z: a field computed in a turned frame is drawn in the frame of the picture). A caller that
+/// makes its patches one at a time (the film output's polar rows) fills the piece from one reused
+/// patch instead of holding one per cell (doc/performance.md "Field output").
+class VtuPieceArrays
+{
+public:
+  VtuPieceArrays(const VtuFields &fields, std::size_t n_cells, unsigned int n_subdivisions,
+                 double rotation = 0);
+  /// Takes `patch` as cell number `cell` (< n_cells) of the piece.
+  void set_cell(std::size_t cell, const dealii::DataOutBase::Patch<2, 2> &patch);
+
+  std::size_t n_cells() const { return cells; }
+  std::size_t n_points() const { return cells * points_per_cell; }
+  unsigned int n_subdivisions() const { return order; }
+  /// Points (x, y, 0 each) and, per point array (vectors first, then scalars, in data-set
+  /// order: the order of the .pvtu record), its name, components and values.
+  const std::vector<float> &points() const { return point_coordinates; }
+  struct PointArray
+  {
+    std::string name;
+    unsigned int components, first_set;
+    std::vector<float> values;
+  };
+  const std::vector<PointArray> &point_arrays() const { return arrays; }
+
+private:
+  std::size_t cells;
+  unsigned int order, points_per_cell, n_sets;
+  double cos_r, sin_r;
+  std::vector<float> point_coordinates;
+  std::vector<PointArray> arrays;
+};
+
+/// Writes `piece` as one VTU piece of VTK_LAGRANGE_QUADRILATERAL cells of order n, and each of
+/// `cell_data` as an Int32 cell array of one value per cell.
+void write_vtu_piece(std::ostream &out, const VtuPieceArrays &piece,
+                     const std::vector<std::pair<std::string, std::vector<int>>> &cell_data);
+
+/// Writes `patches` (all of one subdivision n) through VtuPieceArrays: see there.
 void write_vtu_piece(std::ostream &out,
                      const std::vector<dealii::DataOutBase::Patch<2, 2>> &patches,
                      const VtuFields &fields,
@@ -47,7 +84,7 @@ void write_vtu_piece(std::ostream &out,
 
 /// The .pvtu record of pieces written by write_vtu_piece with the same `fields` and cell arrays
 /// named `cell_data_names`: VTK's reader matches the arrays of the record and of the pieces by
-/// position and type, so both are listed from one place (point_arrays in vtu_piece.cc).
+/// position and type, so both are listed from one place (array_layouts in vtu_piece.cc).
 void write_pvtu_record(std::ostream &out, const VtuFields &fields,
                        const std::vector<std::string> &cell_data_names,
                        const std::vector<std::string> &pieces);
