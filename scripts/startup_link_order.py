@@ -13,14 +13,17 @@ library before it, for each of its own references. Naming the libraries that rec
 bindings first in the executable (DT_NEEDED order) shortens those walks.
 
 Moving a library forward must not change which definition any reference binds to: where two
-libraries define the same symbol (OpenBLAS's two builds both define dgemm_; libm and libc both
-define modf), the first in the scope wins. `derive` starts from the libraries sorted by the
-bindings they receive and adds, for every binding the new order would move, the constraint that
-the natural winner comes first (a library that must follow one left out of the list is left out
-too), until no binding moves. It runs NATURAL (an executable linked without the order, CMake
-target `sealfe_natural_link_order`) with the candidate order preloaded, which builds the same
-scope. `check` compares every binding of REORDERED against NATURAL's, with all references bound
-at start (LD_BIND_NOW: the lazy function references too), and fails on any difference (ctest
+libraries define the same symbol (`libblas.so.3` and `libopenblas.so.0` both define dgemm_; libm
+and libc both define modf), the first in the scope wins. `derive` starts from the libraries sorted
+by the bindings they receive and, for every binding the candidate order moves, adds the constraint
+that the natural winner comes first (bringing it into the list if it was not; a library that
+others wait for is placed as early as the most bound-to of them), until no binding moves. It runs
+NATURAL (an executable linked without the order, CMake target `sealfe_natural_link_order`) with
+the candidate order preloaded, which builds the same scope. Copies of C++ vague-linkage
+definitions (weak or unique in every library that has them: inline functions, template instances,
+vtables) are interchangeable and may come from another library (interchangeable()). `check`
+compares every binding of REORDERED against NATURAL's, with all references bound at start
+(LD_BIND_NOW: the lazy function references too), and fails on any other difference (ctest
 `startup_link_order_keeps_every_binding`).
 """
 import argparse, collections, functools, os, re, subprocess, sys, tempfile
