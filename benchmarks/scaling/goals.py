@@ -139,6 +139,8 @@ def main():
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--quick", action="store_true")
     a = ap.parse_args()
+    # the bare run starts in an empty directory: a relative path would not be found from there
+    a.sealfe = os.path.abspath(a.sealfe)
     rounds = 1 if a.quick else a.rounds
     work = tempfile.mkdtemp(prefix="sealfe-goals-")
     rows = []
