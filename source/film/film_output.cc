@@ -292,7 +292,10 @@ void polar_patches(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping,
       }
       piece.set_cell(n_cells++, patch);
     }
-  AssertDimension(n_cells, piece.n_cells());
+  // every cell of the piece filled (a cell left out would be written as zeros at the origin)
+  AssertThrow(n_cells == piece.n_cells(),
+              ExcMessage("field output: " + std::to_string(n_cells) +
+                         " cells made for a piece of " + std::to_string(piece.n_cells())));
 }
 
 /// Writes `content` to `name`, with a one-line reason if the file system refuses.
@@ -466,7 +469,9 @@ std::string write_film_fields(const ReynoldsSolver &s, const std::string &direct
   {
     data_out.build_patches(mapping, s.polynomial_degree, DataOut<2>::curved_inner_cells);
     const std::vector<DataOutBase::Patch<2, 2>> &patches = data_out.get_patches();
-    AssertDimension(patches.size(), n_cells);
+    AssertThrow(patches.size() == n_cells,
+                ExcMessage("field output: " + std::to_string(patches.size()) +
+                           " patches for a piece of " + std::to_string(n_cells) + " cells"));
     for (std::size_t c = 0; c < patches.size(); ++c)
       piece.set_cell(c, patches[c]);
   }
