@@ -60,7 +60,9 @@ void expect_polar_grid(const dealii::parallel::distributed::Triangulation<2> &tr
   EXPECT_LT(worst_t, 1e-14);
   // (each rank holds only its part of the fine cells)
   if (dealii::Utilities::MPI::n_mpi_processes(tria.get_communicator()) == 1)
+  {
     EXPECT_EQ(seen.size(), radii.size() * nt);
+  }
 }
 } // namespace
 

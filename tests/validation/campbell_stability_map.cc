@@ -202,8 +202,11 @@ TEST(WhirlModes, GyroscopicSplittingOfOneSpinningRing)
     {
       EXPECT_NEAR(m.damping_ratio, 0, 1e-12) << "omega = " << omega;
       EXPECT_EQ(m.stator_share, 0) << "omega = " << omega; // the rotor ring only
-      if (omega == 0) // no spin: both directions at one frequency, the eigenvector any mix
+      if (omega == 0)
+      {
+        // no spin: both directions at one frequency, the eigenvector any mix
         EXPECT_NEAR(std::abs(m.whirl_frequency), forward, 1e-9 * forward);
+      }
       (m.whirl_frequency > 0 ? found_forward : found_backward) = m.whirl_frequency;
     }
     if (omega == 0)

@@ -290,8 +290,10 @@ TEST(FilmCoefficientsFE, NarrowSealLimitApproachesGreenEtsion)
     EXPECT_GT(rk, 1.2); // faster than first order everywhere, increasing towards 2
     EXPECT_GT(rd, 1.2);
     if (i > 1)
+    {
       EXPECT_GT(rk, std::log(d[i - 2].stiffness / d[i - 1].stiffness) /
                         std::log(widths[i - 2] / widths[i - 1]));
+    }
   }
   const double last = std::log(d[3].stiffness / d[4].stiffness) / std::log(2.0);
   EXPECT_GT(last, 1.7);
@@ -501,6 +503,8 @@ TEST(FilmCoefficientsFE, TwoRotatingRingsGiveTheFMRRCrossCoupling)
     EXPECT_NEAR(k.tilt_cross_stiffness(), mean / 500.0 * ref.tilt_cross_stiffness(),
                 1e-9 * std::abs(ref.tilt_cross_stiffness()) * std::max(1.0, std::abs(mean) / 500));
     if (mean != 0)
+    {
       EXPECT_NEAR(ratio, 1.0, 1e-6);
+    }
   }
 }

@@ -95,7 +95,9 @@ TEST(FilmExpression, ConingAsAFormulaGivesTheAnalyticLoads)
                                            model));
     expect_same_loads(analytic, formula, 1e-9);
     if (model == Cavitation::jfo)
+    {
       EXPECT_GT(analytic.cavitated_fraction, 0.01); // the JFO case does cavitate
+    }
   }
 }
 

@@ -348,7 +348,9 @@ TEST(LineStencilMatrix, RingsOfFewLines)
       EXPECT_LE(r.ratio_to_bound, 1.0);
       EXPECT_EQ(r.local_stencil_rows, r.local_stencil_rows_by_the_rule);
       if (n_ranks() == 1)
+      {
         EXPECT_EQ(r.stencil_rows, layout.size());
+      }
     }
   }
 }
@@ -365,11 +367,15 @@ TEST(LineStencilMatrix, RemainderOnOneRankOnly)
   EXPECT_LE(r.ratio_to_bound, 1.0);
   EXPECT_EQ(r.local_stencil_rows, r.local_stencil_rows_by_the_rule);
   if (n_ranks() == 1)
+  {
     EXPECT_EQ(r.stencil_rows, 71u - 7u);
+  }
   else if (n_ranks() == 2)
+  {
     EXPECT_EQ(r.local_stencil_rows, Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0
                                         ? 36u - 7u
                                         : 35u); // every line of rank 1 fits
+  }
 }
 
 // Explicit zeros in the pattern, 8 lines and 10 positions away, play no part: the lines stay in

@@ -149,7 +149,9 @@ TEST(RotorFeatures, TurnedRotorIsTheStationaryFaceWithThePadsAtPhasePlusTheAngle
     EXPECT_LT(d, 1e-8);
     EXPECT_GT(d_snapshot, 1e-4);
     if (cavitation == Cavitation::jfo)
+    {
       EXPECT_GT(b.cavitated_fraction, 0.0);
+    }
 
     // the linearised coefficients turn the same way (K, D of the turned solve turned back)
     const FilmCoefficients ka = turning.coefficients(tilted_state(base, phi));

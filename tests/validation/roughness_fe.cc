@@ -109,9 +109,13 @@ TEST(RoughnessFE, MixedLubricationLoadCurve)
     previous = l.force_z;
     EXPECT_NEAR(l.min_film_over_sigma, H, 1e-9);
     if (H >= 4)
+    {
       EXPECT_LT(share, 1e-2); // the asperities carry nothing above h/sigma ~ 3-4
+    }
     if (H <= 1)
+    {
       EXPECT_GT(share, 0.5); // and most of the load near touch-down
+    }
   }
 }
 

@@ -293,7 +293,9 @@ void check_update(const unsigned int m, const unsigned int k, const char *packag
             LowRankSolve::solved);
   EXPECT_GT(rcond, 1e-8);
   if (lu.single_precision())
+  {
     EXPECT_GT(lu.refinement_steps(), 0u); // the single factors' answer alone is ~1e-8
+  }
   // a fresh factorisation of the changed matrix (in double)
   SparseDirect fresh;
   {

@@ -89,8 +89,10 @@ TEST(RayleighStep, ManyPadsApproachTheInfinitelyWideSlider)
     EXPECT_LT(std::abs(departure), previous);
     previous = std::abs(departure);
     if (pads == 80u)
+    {
       EXPECT_LT(std::abs(departure),
                 std::exp(-M_PI * b_over_L / 2) + seal.pad_angle() * seal.pad_angle());
+    }
   }
 }
 

@@ -248,7 +248,9 @@ TEST(VarneyGreen, ThinRotorIsGyroscopicallyStabilised)
     EXPECT_LT(g, bound) << w;
     EXPECT_GT(g, previous_rotor) << w;
     if (w > 500)
+    {
       EXPECT_GT(rel, previous_rel) << w;
+    }
     previous_rotor = g;
     previous_rel = rel;
   }
