@@ -81,7 +81,7 @@ def paths(natural):
 _kinds = {}
 
 
-def interchangeable(symbol, version, libraries, lib_path):
+def interchangeable(symbol, libraries, lib_path):
     """Whether every one of `libraries` defines `symbol` weakly or as a unique global: C++ vague
     linkage (inline functions, template instances, vtables, type information, static locals of
     inline functions), where any copy is the definition, which the compilers emit in every object
@@ -111,7 +111,7 @@ def moved(reference, other, lib_path=None):
     `lib_path`, only those not between interchangeable copies (interchangeable())."""
     return [(k, reference[k], other[k]) for k in reference
             if k in other and other[k] != reference[k]
-            and not (lib_path and interchangeable(k[1], k[2], (reference[k], other[k]), lib_path))]
+            and not (lib_path and interchangeable(k[1], (reference[k], other[k]), lib_path))]
 
 
 def order(weights, before, candidates):

@@ -121,6 +121,7 @@ VtuPieceArrays::VtuPieceArrays(const VtuFields &fields, const std::size_t n_cell
   if (n_points() > std::size_t(std::numeric_limits<std::int32_t>::max()))
     throw std::runtime_error("VTU output: more points than a 32-bit connectivity can name");
   point_coordinates.resize(3 * n_points());
+  filled.assign(n_cells, false);
   for (const ArrayLayout &array : array_layouts(fields))
     arrays.push_back({array.name, array.components, array.first_set,
                       std::vector<float>(array.components * n_points())});
@@ -133,6 +134,11 @@ void VtuPieceArrays::set_cell(const std::size_t cell, const dealii::DataOutBase:
     throw std::runtime_error("VTU output: a patch of " + std::to_string(n) +
                              " subdivisions as cell " + std::to_string(cell) + " of a piece of " +
                              std::to_string(cells) + " cells of " + std::to_string(order));
+  if (!filled[cell])
+  {
+    filled[cell] = true;
+    ++n_filled;
+  }
   const std::size_t first = cell * points_per_cell;
   float *point = point_coordinates.data() + 3 * first;
   for (unsigned int j = 0; j <= n; ++j)
@@ -177,6 +183,9 @@ void VtuPieceArrays::set_cell(const std::size_t cell, const dealii::DataOutBase:
 void write_vtu_piece(std::ostream &out, const VtuPieceArrays &piece,
                      const std::vector<std::pair<std::string, std::vector<int>>> &cell_data)
 {
+  if (!piece.complete())
+    throw std::runtime_error("VTU output: a piece of " + std::to_string(piece.n_cells()) +
+                             " cells with some of them not set");
   // connectivity in VTK's node order, offsets, cell types
   const unsigned int n = piece.n_subdivisions(), per_row = n + 1;
   const std::size_t per_cell = per_row * per_row, n_cells = piece.n_cells();

@@ -47,6 +47,9 @@ public:
                  double rotation = 0);
   /// Takes `patch` as cell number `cell` (< n_cells) of the piece.
   void set_cell(std::size_t cell, const dealii::DataOutBase::Patch<2, 2> &patch);
+  /// Whether every cell has been set (write_vtu_piece refuses a piece that is not: a cell left
+  /// out would be drawn as zeros at the origin).
+  bool complete() const { return n_filled == cells; }
 
   std::size_t n_cells() const { return cells; }
   std::size_t n_points() const { return cells * points_per_cell; }
@@ -68,6 +71,8 @@ private:
   double cos_r, sin_r;
   std::vector<float> point_coordinates;
   std::vector<PointArray> arrays;
+  std::vector<bool> filled; ///< by cell
+  std::size_t n_filled = 0;
 };
 
 /// Writes `piece` as one VTU piece of VTK_LAGRANGE_QUADRILATERAL cells of order n, and each of
