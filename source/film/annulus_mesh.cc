@@ -337,8 +337,7 @@ void set_boundary_ids(Triangulation<2> &tria, const double ri, const double ro,
 /// Give the faces that lie on one of the alignment's circles (both vertices on it) a
 /// PolarManifold about its centre (manifold ids 1, 2, ...), so that refinement and a higher-order
 /// mapping keep them on the circle; the rest keeps the annulus' manifold 0.
-void attach_circles(parallel::distributed::Triangulation<2> &tria,
-                    const AnnulusMesh::Alignment &alignment)
+void attach_circles(Triangulation<2> &tria, const AnnulusMesh::Alignment &alignment)
 {
   const double R = alignment.circle_radius, tol = 1e-6 * R;
   if (!(R > 0) || alignment.circle_centres.empty())
@@ -383,8 +382,8 @@ void attach_circles(parallel::distributed::Triangulation<2> &tria,
 }
 } // namespace
 
-void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const double ri,
-                         const double ro, const unsigned int coarsening) const
+void AnnulusMesh::create(Triangulation<2> &tria, const double ri, const double ro,
+                         const unsigned int coarsening) const
 {
   if (!can_coarsen(coarsening))
     throw std::runtime_error("Discretization: cannot build a mesh coarser than the one asked for");
@@ -529,9 +528,9 @@ void AnnulusMesh::create(parallel::distributed::Triangulation<2> &tria, const do
     place_vertices(tria, radial_nodes(nr, ri, ro), nt, extra, refinements);
 }
 
-void AnnulusMesh::place_vertices(parallel::distributed::Triangulation<2> &tria,
-                                 const std::vector<double> &radii, const unsigned int nt,
-                                 const unsigned int extra, const unsigned int refinements) const
+void AnnulusMesh::place_vertices(Triangulation<2> &tria, const std::vector<double> &radii,
+                                 const unsigned int nt, const unsigned int extra,
+                                 const unsigned int refinements) const
 {
   // Refinement on the polar manifold halves cells in (r, theta): a vertex lies at the mean radius
   // and mean angle of its parents, i.e. radii and angles (and the spiral shift of the angles) now

@@ -49,7 +49,6 @@ RadialLines find_radial_lines(const DoFHandler<2> &dof_handler, const Mapping<2>
 {
   const bool active = level == numbers::invalid_unsigned_int;
   const auto &fe = dof_handler.get_fe();
-  const auto &tria = dof_handler.get_triangulation();
   FEValues<2> fe_values(mapping, fe, Quadrature<2>(fe.get_unit_support_points()),
                         update_quadrature_points);
   std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
@@ -85,7 +84,7 @@ RadialLines find_radial_lines(const DoFHandler<2> &dof_handler, const Mapping<2>
   }
   else
     for (const auto &cell : dof_handler.mg_cell_iterators_on_level(level))
-      if (cell->level_subdomain_id() == tria.locally_owned_subdomain())
+      if (cell->is_locally_owned_on_level())
       {
         cell->get_mg_dof_indices(dofs);
         visit(cell);
@@ -277,7 +276,7 @@ void FilmMultigrid::clear()
 }
 
 void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mapping_in,
-                          const std::vector<types::boundary_id> &dirichlet_ids)
+                          const std::vector<types::boundary_id> &dirichlet_ids, const MPI_Comm comm)
 {
   data.reset(); // not clear(): the active lines of number_by_radial_lines are kept
   LapTimer lap(lap_times);
@@ -287,7 +286,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   dof_handler->distribute_mg_dofs();
   lap("level dofs");
   const auto &tria = dof_handler->get_triangulation();
-  const MPI_Comm comm = dof_handler->get_communicator();
+  communicator = comm;
   const unsigned int n_levels = tria.n_global_levels(), fine = n_levels - 1;
 
   // The radial lines of every level (the smoother's line blocks).
@@ -329,7 +328,7 @@ void FilmMultigrid::setup(DoFHandler<2> &dof_handler_in, const Mapping<2> &mappi
   lap("level boundary dofs");
 
   data->fine_is_system =
-      fine_active && data->level_transfer.build(*dof_handler, data->constrained_dofs, true);
+      fine_active && data->level_transfer.build(*dof_handler, data->constrained_dofs, true, comm);
   if (fine_active && !data->fine_is_system)
     number_level(fine); // the finest level's own lines after all
   if (data->fine_is_system)
@@ -420,7 +419,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
     auto &matrix = data->level_matrices[l];
     matrix = 0;
     for (const auto &cell : dof_handler->mg_cell_iterators_on_level(l))
-      if (cell->level_subdomain_id() == tria.locally_owned_subdomain())
+      if (cell->is_locally_owned_on_level())
       {
         cell_matrix = 0;
         if (polar.reinit(cell))
@@ -526,7 +525,7 @@ void FilmMultigrid::prepare(const MatrixType &fine_matrix, const Coefficient &K,
       // the finest level is the system: its vectors have the system's (active) dofs
       data->defect[l].reinit(l == fine ? dof_handler->locally_owned_dofs()
                                        : dof_handler->locally_owned_mg_dofs(l),
-                             tria.get_communicator());
+                             communicator);
       data->solution[l].reinit(data->defect[l]);
       data->residual[l].reinit(data->defect[l]);
     }

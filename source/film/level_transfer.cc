@@ -12,11 +12,11 @@ namespace sealfe
 using namespace dealii;
 
 bool LevelTransfer::build(const DoFHandler<2> &dof_handler,
-                          const MGConstrainedDoFs &constrained_dofs, const bool fine_active)
+                          const MGConstrainedDoFs &constrained_dofs, const bool fine_active,
+                          const MPI_Comm comm)
 {
   const auto &tria = dof_handler.get_triangulation();
   const auto &fe = dof_handler.get_fe();
-  const MPI_Comm comm = dof_handler.get_communicator();
   const unsigned int n_levels = tria.n_global_levels(), n = fe.n_dofs_per_cell();
   std::vector<types::global_dof_index> parent(n), child(n);
   std::vector<bool> boundary(n);

@@ -41,13 +41,25 @@ namespace sealfe
 {
 using namespace dealii;
 
+namespace
+{
+/// The levels of the globally refined annulus are the geometric multigrid's hierarchy: p4est
+/// keeps them on several ranks, a serial triangulation always has them.
+std::unique_ptr<Triangulation<2>> make_film_triangulation(const MPI_Comm comm)
+{
+  if (Utilities::MPI::n_mpi_processes(comm) == 1)
+    return std::make_unique<Triangulation<2>>(Triangulation<2>::limit_level_difference_at_vertices);
+  return std::make_unique<parallel::distributed::Triangulation<2>>(
+      comm, Triangulation<2>::limit_level_difference_at_vertices,
+      parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy);
+}
+} // namespace
+
 ReynoldsSolver::ReynoldsSolver(MPI_Comm comm) : ReynoldsSolver(FilmSettings(), comm) {}
 
 ReynoldsSolver::ReynoldsSolver(const FilmSettings &settings_in, MPI_Comm comm)
     : settings(settings_in), mpi_communicator(comm),
-      // the levels of the globally refined annulus are the geometric multigrid's hierarchy
-      triangulation(comm, Triangulation<2>::limit_level_difference_at_vertices,
-                    parallel::distributed::Triangulation<2>::construct_multigrid_hierarchy),
+      triangulation_storage(make_film_triangulation(comm)), triangulation(*triangulation_storage),
       dof_handler(triangulation), timer(std::cerr, TimerOutput::never, TimerOutput::wall_times)
 {
 }
@@ -318,7 +330,7 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
   {
     if (!multigrid.is_setup())
       multigrid.setup(dof_handler, *mapping,
-                      {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary});
+                      {AnnulusMesh::inner_boundary, AnnulusMesh::outer_boundary}, mpi_communicator);
     // the level matrices need K alone (pressure_flow: local_film's K without the rest)
     auto prepare = [this]()
     {

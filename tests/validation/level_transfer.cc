@@ -95,7 +95,7 @@ TEST_P(LevelTransferTest, EqualsMGTransferPrebuiltOnEveryLevel)
   // Level numbering on every level (the transfer of FilmMultigrid's fallback branch).
   {
     LevelTransfer transfer;
-    ASSERT_TRUE(transfer.build(dof_handler, constrained, false));
+    ASSERT_TRUE(transfer.build(dof_handler, constrained, false, dof_handler.get_communicator()));
     for (unsigned int l = 1; l <= fine; ++l)
     {
       VectorType coarse = level_vector(l - 1), fine_vector = level_vector(l);
@@ -119,7 +119,7 @@ TEST_P(LevelTransferTest, EqualsMGTransferPrebuiltOnEveryLevel)
   // the same dofs, matched cell by cell (every finest-level cell is active).
   {
     LevelTransfer transfer;
-    ASSERT_TRUE(transfer.build(dof_handler, constrained, true));
+    ASSERT_TRUE(transfer.build(dof_handler, constrained, true, dof_handler.get_communicator()));
     const IndexSet &owned_active = dof_handler.locally_owned_dofs();
     const IndexSet &owned_level = dof_handler.locally_owned_mg_dofs(fine);
     std::vector<types::global_dof_index> active(n), level(n);

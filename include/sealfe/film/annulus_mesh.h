@@ -4,7 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
-#include <deal.II/distributed/tria.h>
+#include <deal.II/grid/tria.h>
 
 #include <string>
 #include <vector>
@@ -51,8 +51,10 @@ public:
   /// Build the mesh for the dam ri..ro into `tria`, `coarsening` times coarser than asked for
   /// (each coarsening halves the cells in r and theta, or removes one global refinement). Throws
   /// std::runtime_error if the mesh file is missing, unreadable or not an annulus ri..ro.
-  void create(dealii::parallel::distributed::Triangulation<2> &tria, const double ri,
-              const double ro, const unsigned int coarsening = 0) const;
+  /// `tria` may be serial or distributed (p4est); a generated mesh file is made by rank 0 of its
+  /// communicator.
+  void create(dealii::Triangulation<2> &tria, const double ri, const double ro,
+              const unsigned int coarsening = 0) const;
 
   /// Radial node positions of the built-in mesh (nr + 1 values from ri to ro). With grading on,
   /// the nodes equidistribute int dr / h0(r)^1.5, h0 = film at theta's mean, so cells shrink where
@@ -116,9 +118,9 @@ public:
 private:
   /// Move the vertices of the refined coarse grid (`extra` + `refinements` global refinements)
   /// to the nodes of the mesh asked for: graded `radii`, nt 2^refinements uniform angles.
-  void place_vertices(dealii::parallel::distributed::Triangulation<2> &tria,
-                      const std::vector<double> &radii, const unsigned int nt,
-                      const unsigned int extra, const unsigned int refinements) const;
+  void place_vertices(dealii::Triangulation<2> &tria, const std::vector<double> &radii,
+                      const unsigned int nt, const unsigned int extra,
+                      const unsigned int refinements) const;
 };
 
 } // namespace sealfe

@@ -73,9 +73,10 @@ public:
   static bool has_hierarchy(const dealii::DoFHandler<2> &dof_handler);
 
   /// Once per mesh: level dofs (distributes them), zero-Dirichlet level constraints on the two
-  /// boundary ids, level sparsity, transfer.
+  /// boundary ids, level sparsity, transfer. `comm`: the communicator of the system's vectors
+  /// and matrix, which the level objects share (a serial mesh's own is MPI_COMM_SELF).
   void setup(dealii::DoFHandler<2> &dof_handler, const dealii::Mapping<2> &mapping,
-             const std::vector<dealii::types::boundary_id> &dirichlet_ids);
+             const std::vector<dealii::types::boundary_id> &dirichlet_ids, MPI_Comm comm);
   bool is_setup() const { return dof_handler != nullptr; }
   void clear();
 
@@ -100,6 +101,7 @@ private:
   std::unique_ptr<Data> data;
   dealii::DoFHandler<2> *dof_handler = nullptr;
   const dealii::Mapping<2> *mapping = nullptr;
+  MPI_Comm communicator = MPI_COMM_NULL; // of setup()
   /// The radial lines of the active numbering (number_by_radial_lines): first position of each
   /// line within the owned dofs; the finest level reuses them.
   std::vector<unsigned int> active_line_start;

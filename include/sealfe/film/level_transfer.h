@@ -32,9 +32,10 @@ public:
   /// owned row of a finer level is not reached from a parent cell this rank sees (possible on
   /// several ranks; every rank returns the same). fine_active: the finest level's rows are the
   /// active dofs of its cells (the system's numbering; every cell of that level is active on a
-  /// globally refined mesh), its level dofs are not used.
+  /// globally refined mesh), its level dofs are not used. `comm`: the communicator of the
+  /// vectors it acts on (the film solver's; a serial mesh's own is MPI_COMM_SELF).
   bool build(const dealii::DoFHandler<2> &dof_handler,
-             const dealii::MGConstrainedDoFs &constrained_dofs, bool fine_active);
+             const dealii::MGConstrainedDoFs &constrained_dofs, bool fine_active, MPI_Comm comm);
 
   /// dst (level l) += P src (level l - 1)
   void prolongate_and_add(unsigned int l, VectorType &dst, const VectorType &src);
