@@ -50,7 +50,11 @@ int main(int argc, char **argv)
   // before any BLAS call: the factorisations' dense kernels for this CPU
   sealfe::numerics::use_cpu_blas_kernels();
   choose_transport();
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Threads: deal.II's rule (no limit given), each rank the node's cores shared by its ranks on
+  // the node: one rank of a 2-core machine has two, which the film's multigrid products and line
+  // solves and its CG products use (doc/performance.md, Session 36); `mpirun -np 2` has one
+  // each. DEAL_II_NUM_THREADS in the environment caps it.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   using namespace sealfe::applications;
   return run_command_line(argc, argv,
                           {solve_command(), coefficients_command(), table_command(),

@@ -1,4 +1,5 @@
 #include <sealfe/film/film_linear_solver.h>
+#include <sealfe/numerics/threaded_product.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/solver_cg.h>
@@ -21,6 +22,17 @@ namespace
 {
 using VectorType = TrilinosWrappers::MPI::Vector;
 
+/// The system matrix in the Krylov solvers: its products on deal.II's threads where one rank
+/// holds it (numerics::threaded_product, the same bits on any number of threads), else Epetra's.
+struct SystemOperator
+{
+  const TrilinosWrappers::SparseMatrix &matrix;
+  void vmult(VectorType &dst, const VectorType &src) const
+  {
+    if (!numerics::threaded_product(matrix.trilinos_matrix(), src.begin(), dst.begin()))
+      matrix.vmult(dst, src);
+  }
+};
 } // namespace
 
 FilmLinearSolver::Statistics &FilmLinearSolver::Statistics::operator+=(const Statistics &other)
@@ -226,16 +238,17 @@ unsigned int FilmLinearSolver::krylov_solve(const VectorType &rhs, VectorType &x
   SolverControl control(max_iterations, target, false, false);
   try
   {
+    const SystemOperator system{*matrix};
     if (current_method == Method::cg_gmg)
-      SolverCG<VectorType>(control).solve(*matrix, x, rhs, *multigrid);
+      SolverCG<VectorType>(control).solve(system, x, rhs, *multigrid);
     else if (current_method == Method::cg_amg && !lagged)
-      SolverCG<VectorType>(control).solve(*matrix, x, rhs, *amg);
+      SolverCG<VectorType>(control).solve(system, x, rhs, *amg);
     else
     {
       // Right preconditioning: the tolerance applies to the true residual.
       SolverGMRES<VectorType>::AdditionalData gmres_data(50, true);
       SolverGMRES<VectorType> gmres(control, gmres_data);
-      gmres.solve(*matrix, x, rhs, *amg);
+      gmres.solve(system, x, rhs, *amg);
     }
   }
   catch (SolverControl::NoConvergence &e)

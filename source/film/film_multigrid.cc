@@ -6,6 +6,7 @@
 #include <sealfe/film/line_stencil_matrix.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/sparse_direct.h>
+#include <sealfe/numerics/threaded_product.h>
 
 #include <deal.II/base/mg_level_object.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -126,7 +127,7 @@ struct LevelOperator : public Subscriptor
   {
     if (stencil)
       stencil->vmult(dst, src);
-    else
+    else if (!numerics::threaded_product(matrix->trilinos_matrix(), src.begin(), dst.begin()))
       matrix->vmult(dst, src);
   }
   types::global_dof_index m() const { return matrix->m(); }

@@ -53,9 +53,10 @@ public:
   unsigned int bandwidth() const { return band_width; }
 
 private:
-  void solve(double *x, const double *b) const;
+  /// x = B^-1 b on the lines first_line .. last_line - 1 (x may be b).
+  void solve(double *x, const double *b, unsigned int first_line, unsigned int last_line) const;
   template <unsigned int B>
-  void solve(double *x, const double *b) const;
+  void solve(double *x, const double *b, unsigned int first_line, unsigned int last_line) const;
 
   const RadialLines *lines = nullptr;
   unsigned int band_width = 0;

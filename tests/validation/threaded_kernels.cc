@@ -1,0 +1,222 @@
+// The film's kernels split over threads (deal.II's MultithreadInfo; one rank of a 2-core machine
+// has two): the multigrid smoother's single-precision products (LineStencilMatrix), its line
+// solves (LineJacobi, numbered by lines and gathered into line order) and the CG's and coarse
+// levels' products (numerics::threaded_product), on a symmetric matrix of 480 lines of 7-9
+// dofs (4 224 rows: every kernel's range is split into several grains: 16 lines, 2048 rows).
+// - Each line or row is written by one thread with the operations of the serial loop, so the
+//   results on one and on two threads are the same to the bit.
+// - threaded_product is y_i = sum_j A_ij x_j summed in the order of the row's entries (the same
+//   bits as that loop written out here), and agrees with Epetra's Multiply to the rounding of
+//   two sums of m terms: |y - y_Epetra|_i <= 2 gamma_m sum_j |A_ij| |x_j| (Higham 2002, 3.1).
+// - With one thread allowed it declines (returns false, y untouched): Epetra's product is used.
+#include <sealfe/film/line_jacobi.h>
+#include <sealfe/film/line_stencil_matrix.h>
+#include <sealfe/numerics/threaded_product.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using namespace sealfe;
+using namespace dealii;
+
+namespace
+{
+using Entries = std::map<std::pair<unsigned int, unsigned int>, double>;
+using VectorType = TrilinosWrappers::MPI::Vector;
+
+/// 480 lines of 9 dofs, every fifth of 7 (lines that differ: positions near the end of a line
+/// have no partner on the next).
+RadialLines lines_in_order()
+{
+  RadialLines lines;
+  lines.start = {0};
+  for (unsigned int k = 0; k < 480; ++k)
+    lines.start.push_back(lines.start.back() + (k % 5 == 4 ? 7 : 9));
+  lines.order.resize(lines.start.back());
+  return lines;
+}
+
+/// Symmetric, strictly diagonally dominant: within a line the dofs 1 and 2 positions away, on the
+/// next line (cyclically) the same and the next position; values that are not round numbers.
+Entries make_entries(const RadialLines &lines)
+{
+  Entries a;
+  const unsigned int n_lines = lines.start.size() - 1;
+  auto couple = [&](const unsigned int i, const unsigned int j, const double v)
+  {
+    a[{i, j}] = v;
+    a[{j, i}] = v;
+  };
+  for (unsigned int k = 0; k < n_lines; ++k)
+  {
+    const unsigned int first = lines.start[k], last = lines.start[k + 1];
+    const unsigned int next = (k + 1) % n_lines;
+    for (unsigned int p = first; p < last; ++p)
+    {
+      for (unsigned int d = 1; d <= 2 && p + d < last; ++d)
+        couple(p, p + d, -(1 + 0.3 * std::sin(0.7 * p + 1.3 * (p + d))));
+      for (unsigned int s = 0; s < 2; ++s)
+        if (p - first + s < lines.start[next + 1] - lines.start[next])
+          couple(p, lines.start[next] + p - first + s, -(0.4 + 0.1 * std::cos(1.0 * p + s)));
+    }
+  }
+  std::vector<double> row_sum(lines.size(), 0.0);
+  for (const auto &[ij, v] : a)
+    row_sum[ij.first] += std::abs(v);
+  for (unsigned int i = 0; i < lines.size(); ++i)
+    a[{i, i}] = row_sum[i] + 1 + 0.2 * std::sin(1.0 * i);
+  return a;
+}
+
+/// The Trilinos matrix of `a` with dof i numbered number[i], on MPI_COMM_SELF.
+void make_matrix(TrilinosWrappers::SparseMatrix &A, const Entries &a,
+                 const std::vector<unsigned int> &number)
+{
+  const unsigned int n = number.size();
+  DynamicSparsityPattern dsp(n, n);
+  for (const auto &[ij, v] : a)
+    dsp.add(number[ij.first], number[ij.second]);
+  const IndexSet all = complete_index_set(n);
+  A.reinit(all, all, dsp, MPI_COMM_SELF);
+  for (const auto &[ij, v] : a)
+    A.set(number[ij.first], number[ij.second], v);
+  A.compress(VectorOperation::insert);
+}
+
+std::vector<double> values_of(const VectorType &v)
+{
+  return {v.begin(), v.end()};
+}
+
+/// Restores deal.II's thread limit of the test main (one thread) when a test ends.
+struct ThreadLimit
+{
+  explicit ThreadLimit(const unsigned int n) { MultithreadInfo::set_thread_limit(n); }
+  ~ThreadLimit() { MultithreadInfo::set_thread_limit(1); }
+};
+} // namespace
+
+TEST(ThreadedKernels, SameBitsOnOneAndTwoThreads)
+{
+  const RadialLines by_lines = lines_in_order();
+  const unsigned int n = by_lines.size();
+  std::vector<unsigned int> identity(n), number(n);
+  std::iota(identity.begin(), identity.end(), 0u);
+  // another numbering of the same dofs, as deal.II numbers a coarse level: number[p] is the dof
+  // at line position p
+  number = identity;
+  std::shuffle(number.begin(), number.end(), std::mt19937(11));
+  RadialLines permuted;
+  permuted.start = by_lines.start;
+  permuted.order.resize(n);
+  for (unsigned int p = 0; p < n; ++p)
+    permuted.order[number[p]] = p;
+  permuted.index_by_position();
+
+  const Entries a = make_entries(by_lines);
+  TrilinosWrappers::SparseMatrix A, P;
+  make_matrix(A, a, identity);
+  make_matrix(P, a, number);
+  LineStencilMatrix stencil;
+  stencil.initialize(A, by_lines.start);
+  ASSERT_EQ(stencil.n_stencil_rows(), n); // every line in the stencil, none in the remainder
+  LineJacobi on_lines, on_permuted;
+  on_lines.initialize(A, by_lines);
+  on_permuted.initialize(P, permuted);
+
+  const IndexSet all = complete_index_set(n);
+  VectorType x(all, MPI_COMM_SELF);
+  for (unsigned int i = 0; i < n; ++i)
+    x.begin()[i] = std::sin(0.61 * i + 0.2) + 0.3 * std::cos(2.9 * i);
+  auto run = [&](const unsigned int threads)
+  {
+    const ThreadLimit limit(threads);
+    std::vector<std::vector<double>> results;
+    VectorType y(x);
+    stencil.vmult(y, x);
+    results.push_back(values_of(y));
+    on_lines.vmult(y, x);
+    results.push_back(values_of(y));
+    on_permuted.vmult(y, x);
+    results.push_back(values_of(y));
+    return results;
+  };
+  const auto one = run(1);
+  const auto two = run(2);
+  {
+    const ThreadLimit limit(2);
+    if (MultithreadInfo::n_threads() < 2)
+      GTEST_SKIP() << "deal.II allows one thread here: nothing to compare";
+  }
+  const char *names[] = {"LineStencilMatrix::vmult", "LineJacobi::vmult (lines)",
+                         "LineJacobi::vmult (gathered)"};
+  for (unsigned int r = 0; r < one.size(); ++r)
+  {
+    unsigned int differences = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      differences += one[r][i] != two[r][i];
+    EXPECT_EQ(differences, 0u) << names[r];
+  }
+}
+
+TEST(ThreadedKernels, ProductIsTheRowSumsInTheirOrder)
+{
+  const RadialLines lines = lines_in_order();
+  const unsigned int n = lines.size();
+  std::vector<unsigned int> identity(n);
+  std::iota(identity.begin(), identity.end(), 0u);
+  TrilinosWrappers::SparseMatrix A;
+  make_matrix(A, make_entries(lines), identity);
+  const Epetra_CrsMatrix &E = A.trilinos_matrix();
+
+  const IndexSet all = complete_index_set(n);
+  VectorType x(all, MPI_COMM_SELF), y(x), y_epetra(x);
+  for (unsigned int i = 0; i < n; ++i)
+    x.begin()[i] = std::sin(0.61 * i + 0.2) + 0.3 * std::cos(2.9 * i);
+
+  {
+    const ThreadLimit limit(1);
+    y = 7.0;
+    EXPECT_FALSE(numerics::threaded_product(E, x.begin(), y.begin()));
+    EXPECT_EQ(y.begin()[0], 7.0); // untouched
+  }
+  const ThreadLimit limit(2);
+  if (MultithreadInfo::n_threads() < 2)
+    GTEST_SKIP() << "deal.II allows one thread here";
+  ASSERT_TRUE(numerics::threaded_product(E, x.begin(), y.begin()));
+  ASSERT_EQ(E.Multiply(false, x.trilinos_vector(), y_epetra.trilinos_vector()), 0);
+
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  unsigned int not_in_order = 0, beyond_bound = 0;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    int count;
+    double *values;
+    int *columns;
+    E.ExtractMyRowView(int(i), count, values, columns);
+    double sum = 0, absolute = 0;
+    for (int e = 0; e < count; ++e)
+    {
+      sum += values[e] * x.begin()[columns[e]];
+      absolute += std::abs(values[e] * x.begin()[columns[e]]);
+    }
+    not_in_order += y.begin()[i] != sum;
+    const double gamma = count * u / (1 - count * u);
+    beyond_bound += std::abs(y.begin()[i] - y_epetra.begin()[i]) > 2 * gamma * absolute;
+  }
+  EXPECT_EQ(not_in_order, 0u);
+  EXPECT_EQ(beyond_bound, 0u);
+}
