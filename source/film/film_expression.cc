@@ -159,10 +159,9 @@ FilmExpression::FilmExpression(const std::string &formula, const std::string &co
   std::streambuf *const cerr_buffer = std::cerr.rdbuf(report.rdbuf());
   try
   {
-    parser.initialize("x,y,t", polar_to_cartesian(formula), c, true);
+    parser.initialize("x,y,t", polar_to_cartesian(formula), c);
     // muparser reports unknown names and some syntax errors only when it evaluates
-    parser.set_time(0);
-    const double v = parser.value(dealii::Point<2>(ro, 0));
+    const double v = parser.value(dealii::Point<3>(ro, 0, 0));
     (void)v;
     std::cerr.rdbuf(cerr_buffer);
   }
@@ -176,8 +175,7 @@ FilmExpression::FilmExpression(const std::string &formula, const std::string &co
 
 double FilmExpression::value(const double r, const double theta, const double t) const
 {
-  parser.set_time(t);
-  return parser.value(dealii::Point<2>(r * std::cos(theta), r * std::sin(theta)));
+  return parser.value(dealii::Point<3>(r * std::cos(theta), r * std::sin(theta), t));
 }
 
 // The derivatives are centred differences in the polar coordinates themselves, not

@@ -10,7 +10,10 @@
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi_remote_point_evaluation.h>
+#include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_local_storage.h>
+#include <deal.II/base/thread_management.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
@@ -212,59 +215,183 @@ void ReynoldsSolver::assemble_system()
   // load/residual integration uses the same rule, so that the interior residuals vanish to solver
   // tolerance and the leakages balance.
   const QGauss<2> quadrature(polynomial_degree + 2);
-  FEValues<2> fe_values(*mapping, *fe, quadrature,
-                        update_values | update_gradients | update_quadrature_points |
-                            update_JxW_values);
   const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
-  FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell),
-      unused(dofs_per_cell, dofs_per_cell);
-  Vector<double> cell_rhs(dofs_per_cell);
-  std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
   // Full film: the loads' parts at p = 0 and their weights in p at the same points
   // (AffineLoadSums), so that compute_loads() does not evaluate the film everywhere again.
   const LoadIntegrator load_integrator(*this);
   const bool gather = load_integrator.affine_applies();
   affine_loads.reset(gather, locally_relevant_dofs.n_elements(), dofs_per_cell);
-  std::vector<unsigned int> relevant_index(dofs_per_cell);
+  const unsigned int n_sums = affine_loads.constant.size(), n_q = quadrature.size();
   // The built-in annulus: every cell of a radial row is the row's first cell turned about the
   // axis, so its geometry comes from one FEValues evaluation per row (PolarCellValues; a cell
-  // that is not such a rotation takes FEValues).
+  // that is not such a rotation takes FEValues). The rows are found here, in the order of the
+  // cells, so that every thread below turns the same first cell of each row.
   std::optional<PolarCellValues> polar;
   if (assembles_on_polar_rows())
     polar.emplace(*mapping, *fe, quadrature);
-  std::function<void(unsigned int, const LocalFilm &)> at_point, at_polar_point;
-  if (gather)
-  {
-    at_point = [&](const unsigned int q, const LocalFilm &f)
-    { load_integrator.add_affine_point(affine_loads, fe_values, q, f); };
-    at_polar_point = [&](const unsigned int q, const LocalFilm &f)
-    { load_integrator.add_affine_point(affine_loads, *polar, q, f); };
-  }
+  std::vector<DoFHandler<2>::active_cell_iterator> cells;
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      cells.push_back(cell);
+      if (polar)
+        polar->reinit(cell);
+    }
 
+  // Batches of cells: their cell matrices, right-hand sides and load parts computed on deal.II's
+  // threads (each thread with its own FEValues and copy of the rows), and added to the system in
+  // the order of the cells on one thread, while the next batch is computed (the same sums in
+  // the same order as one loop over the cells: the same bits on any number of threads).
+  struct CellTerms
+  {
+    FullMatrix<double> matrix;
+    Vector<double> rhs;
+    std::vector<types::global_dof_index> dofs;
+    std::vector<double> point_sums; // [q n_sums + m]: point q's part of affine_loads.constant
+    std::vector<double> weight;     // the cell's part of affine_loads.weight
+  };
+  struct Scratch
+  {
+    FEValues<2> fe_values;
+    std::optional<PolarCellValues> polar;
+    FullMatrix<double> unused;
+    AffineLoadSums sums; // one point's constant sums, the cell's weights
+    CellTerms *terms = nullptr;
+    std::function<void(unsigned int, const LocalFilm &)> at_point, at_polar_point;
+  };
+  constexpr std::size_t batch_size = 1024;
+  std::array<std::vector<CellTerms>, 2> batches;
+  for (auto &batch : batches)
+  {
+    batch.resize(std::min(batch_size, cells.size()));
+    for (CellTerms &terms : batch)
+    {
+      terms.matrix.reinit(dofs_per_cell, dofs_per_cell);
+      terms.rhs.reinit(dofs_per_cell);
+      terms.dofs.resize(dofs_per_cell);
+      if (gather)
+      {
+        terms.point_sums.resize(std::size_t(n_q) * n_sums);
+        terms.weight.resize(std::size_t(AffineLoadSums::n_linear) * dofs_per_cell);
+      }
+    }
+  }
+  Threads::ThreadLocalStorage<std::unique_ptr<Scratch>> scratch;
+  auto new_scratch = [&]()
+  {
+    // FEValues can be neither copied nor moved: the aggregate is made in place
+    std::unique_ptr<Scratch> w(
+        new Scratch{FEValues<2>(*mapping, *fe, quadrature,
+                                update_values | update_gradients | update_quadrature_points |
+                                    update_JxW_values),
+                    polar, FullMatrix<double>(dofs_per_cell, dofs_per_cell), AffineLoadSums()});
+    w->sums.reset(gather, 0, dofs_per_cell);
+    if (gather)
+    {
+      Scratch *p = w.get();
+      // each point's sums alone (each sum takes one term per point), added in order below
+      auto keep = [p, n_sums](const unsigned int q)
+      {
+        std::copy(p->sums.constant.begin(), p->sums.constant.end(),
+                  p->terms->point_sums.begin() + std::size_t(q) * n_sums);
+        std::fill(p->sums.constant.begin(), p->sums.constant.end(), 0.0);
+      };
+      p->at_point = [p, keep, &load_integrator](const unsigned int q, const LocalFilm &f)
+      {
+        load_integrator.add_affine_point(p->sums, p->fe_values, q, f);
+        keep(q);
+      };
+      p->at_polar_point = [p, keep, &load_integrator](const unsigned int q, const LocalFilm &f)
+      {
+        load_integrator.add_affine_point(p->sums, *p->polar, q, f);
+        keep(q);
+      };
+    }
+    return w;
+  };
+  auto compute = [&](const std::size_t first_cell, std::vector<CellTerms> &batch)
+  {
+    const std::size_t n = std::min(batch_size, cells.size() - first_cell);
+    auto some_cells = [&](const std::size_t first, const std::size_t last)
+    {
+      std::unique_ptr<Scratch> &own = scratch.get();
+      if (!own)
+        own = new_scratch();
+      Scratch &w = *own;
+      for (std::size_t c = first; c < last; ++c)
+      {
+        CellTerms &terms = batch[c];
+        w.terms = &terms;
+        const auto &cell = cells[first_cell + c];
+        cell->get_dof_indices(terms.dofs);
+        // the full-film pressure matrix and Couette + squeeze right-hand side
+        cell_film_matrices(w.polar, w.fe_values, cell, false, terms.matrix, w.unused, terms.rhs,
+                           w.at_point, w.at_polar_point);
+        if (gather)
+        {
+          std::copy(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), terms.weight.begin());
+          std::fill(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), 0.0);
+        }
+      }
+    };
+    parallel::apply_to_subranges(std::size_t(0), n, some_cells, 32);
+  };
   // The matrix has CellSparsity's pattern where it applies (matrix_by_position, setup_system),
   // and the cells without constrained dofs are added by position.
+  std::vector<unsigned int> relevant_index(dofs_per_cell);
+  auto add = [&](const std::size_t first_cell, const std::vector<CellTerms> &batch)
+  {
+    const std::size_t n = std::min(batch_size, cells.size() - first_cell);
+    for (std::size_t c = 0; c < n; ++c)
+    {
+      const CellTerms &terms = batch[c];
+      if (gather)
+      {
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int m = 0; m < n_sums; ++m)
+            affine_loads.constant[m] += terms.point_sums[std::size_t(q) * n_sums + m];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          relevant_index[i] = locally_relevant_dofs.index_within_set(terms.dofs[i]);
+        std::copy(terms.weight.begin(), terms.weight.end(), affine_loads.cell_weight.begin());
+        affine_loads.add_cell(relevant_index);
+      }
+      // a cell without constrained dofs: the same sums as distribute_local_to_global, the
+      // owned rows by position
+      CellSparsity::distribute(constraints, matrix_by_position, terms.matrix, terms.rhs, terms.dofs,
+                               system_matrix, system_rhs);
+    }
+  };
+
+  Threads::Task<void> next; // the batch computed while the previous one is added
+  auto start = [&](const std::size_t first_cell, const unsigned int b)
+  {
+    next = Threads::new_task(
+        std::function<void()>([&, first_cell, b]() { compute(first_cell, batches[b]); }));
+  };
   try
   {
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-      {
-        cell->get_dof_indices(local_dof_indices);
-        if (gather)
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            relevant_index[i] = locally_relevant_dofs.index_within_set(local_dof_indices[i]);
-        // the full-film pressure matrix and Couette + squeeze right-hand side
-        cell_film_matrices(polar, fe_values, cell, false, cell_matrix, unused, cell_rhs, at_point,
-                           at_polar_point);
-        if (gather)
-          affine_loads.add_cell(relevant_index);
-        // a cell without constrained dofs: the same sums as distribute_local_to_global, the
-        // owned rows by position
-        CellSparsity::distribute(constraints, matrix_by_position, cell_matrix, cell_rhs,
-                                 local_dof_indices, system_matrix, system_rhs);
-      }
+    if (!cells.empty())
+      start(0, 0);
+    for (std::size_t first_cell = 0, b = 0; first_cell < cells.size();
+         first_cell += batch_size, b = 1 - b)
+    {
+      next.join(); // rethrows what the batch threw (a film that local_film refuses)
+      if (first_cell + batch_size < cells.size())
+        start(first_cell + batch_size, 1 - b);
+      add(first_cell, batches[b]);
+    }
   }
   catch (...)
   {
+    // a batch still running refers to this function's objects: let it end first
+    if (next.joinable())
+      try
+      {
+        next.join();
+      }
+      catch (...)
+      {
+      }
     affine_loads.reset(false, 0, 0); // partial sums: neither valid nor kept
     throw;
   }

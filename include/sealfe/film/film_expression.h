@@ -29,7 +29,10 @@ public:
 
 private:
   std::string text;
-  mutable dealii::FunctionParser<2> parser; // variables x, y, t; r and theta rewritten
+  /// Variables x, y, t as a point of three coordinates (r and theta rewritten), not a
+  /// time-dependent parser: value() then changes no state that threads share (the assembly
+  /// evaluates the film on several; deal.II keeps one muparser per thread).
+  dealii::FunctionParser<3> parser;
   double r_step;
   bool time_dependent; // the formula names t
 };
