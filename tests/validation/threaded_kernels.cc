@@ -9,8 +9,13 @@
 //   bits as that loop written out here), and agrees with Epetra's Multiply to the rounding of
 //   two sums of m terms: |y - y_Epetra|_i <= 2 gamma_m sum_j |A_ij| |x_j| (Higham 2002, 3.1).
 // - With one thread allowed it declines (returns false, y untouched): Epetra's product is used.
+// - A whole full-film run (the assembly's batches of cells computed on the threads and added in
+//   the order of the cells, the multigrid, the CG): the loads on one and on two threads are the
+//   same to the bit, on a mesh of 2 048 cells (two batches of 1 024).
+#include <sealfe/film/film_settings.h>
 #include <sealfe/film/line_jacobi.h>
 #include <sealfe/film/line_stencil_matrix.h>
+#include <sealfe/film/reynolds_solver.h>
 #include <sealfe/numerics/threaded_product.h>
 
 #include <deal.II/base/index_set.h>
@@ -219,4 +224,36 @@ TEST(ThreadedKernels, ProductIsTheRowSumsInTheirOrder)
   }
   EXPECT_EQ(not_in_order, 0u);
   EXPECT_EQ(beyond_bound, 0u);
+}
+
+TEST(ThreadedKernels, FullFilmLoadsSameBitsOnOneAndTwoThreads)
+{
+  // the Varney & Green seal tilted to eps = 0.5 (benchmarks/reynolds_speed/case.prm), Q2 on
+  // 16 x 128 cells, CG + geometric multigrid
+  FilmSettings settings;
+  settings.geometry.tilt = 0.5 * settings.geometry.clearance / settings.geometry.outer_radius;
+  settings.polynomial_degree = 2;
+  settings.mesh.radial_cells = 16;
+  settings.mesh.circumferential_cells = 128;
+  settings.linear_solver = FilmSettings::LinearSolver::cg_gmg;
+  settings.estimate_error = false;
+  auto run = [&](const unsigned int threads)
+  {
+    const ThreadLimit limit(threads);
+    ReynoldsSolver solver(settings, MPI_COMM_WORLD);
+    return solver.run();
+  };
+  const FilmLoads one = run(1), two = run(2);
+  {
+    const ThreadLimit limit(2);
+    if (MultithreadInfo::n_threads() < 2)
+      GTEST_SKIP() << "deal.II allows one thread here: nothing to compare";
+  }
+  EXPECT_EQ(one.force_z, two.force_z);
+  EXPECT_EQ(one.moment_x, two.moment_x);
+  EXPECT_EQ(one.moment_y, two.moment_y);
+  EXPECT_EQ(one.leakage_inner, two.leakage_inner);
+  EXPECT_EQ(one.leakage_outer, two.leakage_outer);
+  EXPECT_EQ(one.friction_torque, two.friction_torque);
+  EXPECT_EQ(one.max_pressure, two.max_pressure);
 }
