@@ -51,9 +51,9 @@ int main(int argc, char **argv)
   sealfe::numerics::use_cpu_blas_kernels();
   choose_transport();
   // Threads: deal.II's rule (no limit given), each rank the node's cores shared by its ranks on
-  // the node: one rank of a 2-core machine has two, which the film's multigrid products and line
-  // solves and its CG products use (doc/performance.md, Session 36); `mpirun -np 2` has one
-  // each. DEAL_II_NUM_THREADS in the environment caps it.
+  // the node: one rank of a 2-core machine has two, which the full-film assembly, the multigrid's
+  // products and line solves and the CG's products use (doc/performance.md, Session 36); `mpirun
+  // -np 2` has one each. DEAL_II_NUM_THREADS in the environment caps it.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   using namespace sealfe::applications;
   return run_command_line(argc, argv,

@@ -67,7 +67,7 @@ void for_each_token(const std::string &formula, Name name, Other other)
   }
 }
 
-/// FunctionParser<2> knows x, y and t only: rewrite the names r and theta (whole identifiers,
+/// The parser knows x, y and t only: rewrite the names r and theta (whole identifiers,
 /// so "rho" or "theta0" stay) as functions of x and y.
 std::string polar_to_cartesian(const std::string &formula)
 {

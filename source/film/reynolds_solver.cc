@@ -375,7 +375,7 @@ void ReynoldsSolver::assemble_system()
     for (std::size_t first_cell = 0, b = 0; first_cell < cells.size();
          first_cell += batch_size, b = 1 - b)
     {
-      next.join(); // rethrows what the batch threw (a film that local_film refuses)
+      next.join(); // rethrows what the batch threw
       if (first_cell + batch_size < cells.size())
         start(first_cell + batch_size, 1 - b);
       add(first_cell, batches[b]);

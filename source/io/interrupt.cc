@@ -24,6 +24,14 @@ extern "C" void on_signal(const int signal)
                          "what is done (interrupt again to quit at once)\n";
   [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof(message) - 1);
 }
+// The signal that arrived while a HoldSignals existed (0: none); the first one is kept.
+volatile std::sig_atomic_t held_signal = 0;
+
+extern "C" void on_held_signal(const int signal)
+{
+  if (held_signal == 0)
+    held_signal = signal;
+}
 } // namespace
 
 StopOnSignal::StopOnSignal()
@@ -69,16 +77,21 @@ std::string reason()
 
 HoldSignals::HoldSignals()
 {
-  sigset_t held;
-  sigemptyset(&held);
-  sigaddset(&held, SIGINT);
-  sigaddset(&held, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &held, &old);
+  held_signal = 0;
+  struct sigaction action = {};
+  action.sa_handler = on_held_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART; // a rename in progress goes on
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
 }
 
 HoldSignals::~HoldSignals()
 {
-  pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+  if (const int signal = held_signal; signal != 0)
+    ::raise(signal); // to this thread, under the restored handler
 }
 } // namespace interrupt
 } // namespace sealfe

@@ -1,14 +1,12 @@
 #include <sealfe/numerics/threaded_product.h>
 
-#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parallel.h>
 
 namespace sealfe::numerics
 {
 bool threaded_product(const Epetra_CrsMatrix &A, const double *x, double *y)
 {
-  if (dealii::MultithreadInfo::n_threads() < 2 || A.Importer() != nullptr || !A.Filled() ||
-      !A.StorageOptimized())
+  if (A.Importer() != nullptr || !A.Filled() || !A.StorageOptimized())
     return false;
   int *offsets = nullptr, *columns = nullptr;
   double *values = nullptr;

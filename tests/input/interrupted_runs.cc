@@ -2,20 +2,32 @@
 // the finished rows in a table whose summary.json says complete = false (exit 1); `Resume = true`
 // computes only the rest and ends with the same table as an uninterrupted run; a resume with a
 // changed parameter, and a table whose every point fails, are refused and change nothing; a
-// second SIGINT ends the run at once (130); an interrupted transient keeps its rows.
+// second SIGINT ends the run at once (130); an interrupted transient keeps its rows; a signal
+// that arrives while a run publishes its files waits for the last rename, whichever thread the
+// kernel gives it to.
 #include "../sealfe_cli.h"
+
+#include <sealfe/io/interrupt.h>
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include <pthread.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -255,3 +267,38 @@ TEST(InterruptedRuns, TransientKeepsItsRowsMarkedIncomplete)
   EXPECT_EQ(read_file(d / "out" / "transient.csv").find("nan"), std::string::npos);
 }
 } // namespace
+
+TEST(InterruptedRuns, SignalWhilePublishingWaitsForTheEnd)
+{
+  // StagedOutput::publish holds SIGINT and SIGTERM (interrupt::HoldSignals) while it renames. The
+  // kernel gives a signal sent to the process to a thread that does not block it: here another
+  // thread, as deal.II's task threads (TBB) and MPI's are, while the holding thread blocks it.
+  // Held, the process lives on until the hold ends and then takes the default action; a hold by
+  // the holding thread's signal mask alone would end it at once, before "held" is written.
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        std::atomic<bool> done{false};
+        std::thread other(
+            [&done]()
+            {
+              while (!done)
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            });
+        sigset_t term;
+        sigemptyset(&term);
+        sigaddset(&term, SIGTERM);
+        pthread_sigmask(SIG_BLOCK, &term, nullptr); // this thread only: `other` takes it
+        {
+          const sealfe::interrupt::HoldSignals hold;
+          kill(getpid(), SIGTERM);
+          std::this_thread::sleep_for(std::chrono::milliseconds(200));
+          std::cerr << "held" << std::endl;
+        } // raised again here, pending on this thread until it unblocks
+        pthread_sigmask(SIG_UNBLOCK, &term, nullptr);
+        done = true;
+        other.join();
+        std::exit(0); // not reached: SIGTERM's default action ends the process
+      },
+      ::testing::KilledBySignal(SIGTERM), "held");
+}

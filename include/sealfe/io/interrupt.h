@@ -40,8 +40,12 @@ bool requested(MPI_Comm comm);
 /// "interrupted on another MPI rank".
 std::string reason();
 
-/// While it exists, SIGINT and SIGTERM are blocked (delivered when it ends): a sequence of renames
-/// that publishes a run is never cut half-way.
+/// While it exists, SIGINT and SIGTERM are held: a signal that arrives is only recorded, and
+/// raised again on this thread when it ends, under the handlers it found (the default action
+/// ends the process; a StopOnSignal's sets its flag): a sequence of renames that publishes a run
+/// is never cut half-way. Held by a handler for the whole process, not by this thread's signal
+/// mask alone: the kernel gives a signal to any thread that does not block it, and the threads
+/// of deal.II's task scheduler (TBB) and MPI do not.
 class HoldSignals
 {
 public:
@@ -51,7 +55,7 @@ public:
   HoldSignals &operator=(const HoldSignals &) = delete;
 
 private:
-  sigset_t old;
+  struct sigaction old_int, old_term;
 };
 } // namespace interrupt
 } // namespace sealfe

@@ -7,12 +7,11 @@
 
 namespace sealfe::numerics
 {
-/// y = A x, the rows split over deal.II's threads (parallel::apply_to_subranges); each row is
-/// summed by one thread in the order of its entries, so the result has the same bits on any
-/// number of threads. x is
-/// indexed by A's columns, y by its rows. Returns false, leaving y untouched, where the product
-/// would not gain or cannot be done here: one thread allowed, a column map that is not the
-/// domain map (columns owned by other ranks: Epetra's Multiply imports them), or rows not held
-/// in one array (a matrix whose storage was not optimised by FillComplete).
+/// y = A x, the rows split over deal.II's threads (parallel::apply_to_subranges; on one thread
+/// the same loop, unsplit); each row is summed by one thread in the order of its entries, so the
+/// result has the same bits on any number of threads. x is indexed by A's columns, y by its
+/// rows. Returns false, leaving y untouched, where the product cannot be done here: a column map
+/// that is not the domain map (columns owned by other ranks: Epetra's Multiply imports them), or
+/// rows not held in one array (a matrix whose storage was not optimised by FillComplete).
 bool threaded_product(const Epetra_CrsMatrix &A, const double *x, double *y);
 } // namespace sealfe::numerics
