@@ -34,7 +34,12 @@ std::string error_of(const Settings &settings)
       prm.set(entry, value);
   }
   prm.leave_subsection();
-  const auto dir = std::filesystem::temp_directory_path() / "sealfe_annular_input";
+  // one directory per test: ctest runs these tests as concurrent processes, and two runs writing
+  // the same file in one directory rename each other's temporary file (output::
+  // write_file_atomically's name.tmp: "cannot write ...: No such file or directory", seen in CI)
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("sealfe_annular_input_" +
+                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(dir);
   try
   {
