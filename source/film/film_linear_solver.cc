@@ -29,8 +29,7 @@ struct SystemOperator
   const TrilinosWrappers::SparseMatrix &matrix;
   void vmult(VectorType &dst, const VectorType &src) const
   {
-    if (!numerics::threaded_product(matrix.trilinos_matrix(), src.begin(), dst.begin()))
-      matrix.vmult(dst, src);
+    numerics::threaded_vmult(matrix, dst, src);
   }
 };
 } // namespace

@@ -127,8 +127,8 @@ struct LevelOperator : public Subscriptor
   {
     if (stencil)
       stencil->vmult(dst, src);
-    else if (!numerics::threaded_product(matrix->trilinos_matrix(), src.begin(), dst.begin()))
-      matrix->vmult(dst, src);
+    else
+      numerics::threaded_vmult(*matrix, dst, src);
   }
   types::global_dof_index m() const { return matrix->m(); }
   types::global_dof_index n() const { return matrix->n(); }

@@ -247,8 +247,9 @@ void ReynoldsSolver::assemble_system()
     FullMatrix<double> matrix;
     Vector<double> rhs;
     std::vector<types::global_dof_index> dofs;
-    std::vector<double> point_sums; // [q n_sums + m]: point q's part of affine_loads.constant
-    std::vector<double> weight;     // the cell's part of affine_loads.weight
+    std::vector<unsigned int> relevant; // dofs' positions in locally_relevant_dofs (gather)
+    std::vector<double> point_sums;     // [q n_sums + m]: point q's part of affine_loads.constant
+    std::vector<double> weight;         // the cell's part of affine_loads.weight
   };
   struct Scratch
   {
@@ -271,6 +272,7 @@ void ReynoldsSolver::assemble_system()
       terms.dofs.resize(dofs_per_cell);
       if (gather)
       {
+        terms.relevant.resize(dofs_per_cell);
         terms.point_sums.resize(std::size_t(n_q) * n_sums);
         terms.weight.resize(std::size_t(AffineLoadSums::n_linear) * dofs_per_cell);
       }
@@ -329,6 +331,9 @@ void ReynoldsSolver::assemble_system()
                            w.at_point, w.at_polar_point);
         if (gather)
         {
+          // here, not where the batch is added on one thread (IndexSet's lookups are const)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            terms.relevant[i] = locally_relevant_dofs.index_within_set(terms.dofs[i]);
           std::copy(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), terms.weight.begin());
           std::fill(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), 0.0);
         }
@@ -338,7 +343,6 @@ void ReynoldsSolver::assemble_system()
   };
   // The matrix has CellSparsity's pattern where it applies (matrix_by_position, setup_system),
   // and the cells without constrained dofs are added by position.
-  std::vector<unsigned int> relevant_index(dofs_per_cell);
   auto add = [&](const std::size_t first_cell, const std::vector<CellTerms> &batch)
   {
     const std::size_t n = std::min(batch_size, cells.size() - first_cell);
@@ -350,10 +354,8 @@ void ReynoldsSolver::assemble_system()
         for (unsigned int q = 0; q < n_q; ++q)
           for (unsigned int m = 0; m < n_sums; ++m)
             affine_loads.constant[m] += terms.point_sums[std::size_t(q) * n_sums + m];
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          relevant_index[i] = locally_relevant_dofs.index_within_set(terms.dofs[i]);
         std::copy(terms.weight.begin(), terms.weight.end(), affine_loads.cell_weight.begin());
-        affine_loads.add_cell(relevant_index);
+        affine_loads.add_cell(terms.relevant);
       }
       // a cell without constrained dofs: the same sums as distribute_local_to_global, the
       // owned rows by position

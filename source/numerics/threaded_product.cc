@@ -27,4 +27,12 @@ bool threaded_product(const Epetra_CrsMatrix &A, const double *x, double *y)
   dealii::parallel::apply_to_subranges(0, A.NumMyRows(), rows, 2048);
   return true;
 }
+
+void threaded_vmult(const dealii::TrilinosWrappers::SparseMatrix &A,
+                    dealii::TrilinosWrappers::MPI::Vector &dst,
+                    const dealii::TrilinosWrappers::MPI::Vector &src)
+{
+  if (!threaded_product(A.trilinos_matrix(), src.begin(), dst.begin()))
+    A.vmult(dst, src);
+}
 } // namespace sealfe::numerics

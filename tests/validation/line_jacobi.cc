@@ -11,6 +11,8 @@
 // - interleaving: lines of one length are swept 4 at a time, side by side; each line's result is
 //   the one of that line's block solved alone (a matrix of one line), to the bit.
 // Half bandwidths 1-3 (the unrolled solves) and 4 (the generic one).
+#include "../line_matrices.h"
+
 #include <sealfe/film/line_jacobi.h>
 
 #include <deal.II/base/index_set.h>
@@ -34,67 +36,16 @@ using namespace dealii;
 
 namespace
 {
-using Entries = std::map<std::pair<unsigned int, unsigned int>, double>;
+using sealfe::testing::Entries;
+using sealfe::testing::make_entries;
+using sealfe::testing::make_matrix;
 
 /// Lines of these lengths (2 and 3: shorter than the band), numbered one after the other.
 const std::vector<unsigned int> lengths = {2, 9, 7, 12, 3, 8};
 
 RadialLines lines_in_order(const std::vector<unsigned int> &lengths = ::lengths)
 {
-  RadialLines lines;
-  lines.start = {0};
-  for (const unsigned int m : lengths)
-    lines.start.push_back(lines.start.back() + m);
-  lines.order.resize(lines.start.back()); // numbered by lines: the position is the index
-  return lines;
-}
-
-/// A symmetric, strictly diagonally dominant matrix (so positive definite) numbered by lines:
-/// within a line, entries at distances 1..w; each dof coupled to the dofs at the same and the
-/// next position of the next line (cyclically); values not sums of round numbers.
-Entries make_entries(const RadialLines &lines, const unsigned int w)
-{
-  Entries a;
-  const unsigned int n_lines = lines.start.size() - 1;
-  auto couple = [&](const unsigned int i, const unsigned int j, const double v)
-  {
-    a[{i, j}] = v;
-    a[{j, i}] = v;
-  };
-  for (unsigned int k = 0; k < n_lines; ++k)
-  {
-    const unsigned int first = lines.start[k], last = lines.start[k + 1];
-    for (unsigned int p = first; p < last; ++p)
-    {
-      for (unsigned int d = 1; d <= w && p + d < last; ++d)
-        couple(p, p + d, -(1 + 0.3 * std::sin(0.7 * p + 1.3 * (p + d))));
-      const unsigned int next = (k + 1) % n_lines, i = p - first;
-      for (unsigned int s = 0; s < 2; ++s)
-        if (i + s < lines.start[next + 1] - lines.start[next])
-          couple(p, lines.start[next] + i + s, -(0.4 + 0.1 * std::cos(1.0 * p + s)));
-    }
-  }
-  std::vector<double> row_sum(lines.size(), 0.0);
-  for (const auto &[ij, v] : a)
-    row_sum[ij.first] += std::abs(v);
-  for (unsigned int i = 0; i < lines.size(); ++i)
-    a[{i, i}] = row_sum[i] + 1 + 0.2 * std::sin(1.0 * i);
-  return a;
-}
-
-/// The Trilinos matrix of `a` with dof i numbered number[i], on MPI_COMM_SELF.
-void make_matrix(TrilinosWrappers::SparseMatrix &A, const Entries &a,
-                 const std::vector<unsigned int> &number)
-{
-  const unsigned int n = number.size();
-  DynamicSparsityPattern dsp(n, n);
-  for (const auto &[ij, v] : a)
-    dsp.add(number[ij.first], number[ij.second]);
-  const IndexSet all = complete_index_set(n);
-  A.reinit(all, all, dsp, MPI_COMM_SELF);
-  for (const auto &[ij, v] : a)
-    A.set(number[ij.first], number[ij.second], v);
-  A.compress(VectorOperation::insert);
+  return sealfe::testing::lines_of_lengths(lengths);
 }
 
 bool same_line(const RadialLines &lines, const unsigned int i, const unsigned int j)
@@ -163,12 +114,7 @@ TEST(LineJacobi, GatherIntoLineOrderIsThePermutedSolve)
   std::iota(identity.begin(), identity.end(), 0u);
   number = identity;
   std::shuffle(number.begin(), number.end(), std::mt19937(5));
-  RadialLines permuted;
-  permuted.start = by_lines.start;
-  permuted.order.resize(n);
-  for (unsigned int p = 0; p < n; ++p)
-    permuted.order[number[p]] = p; // the line position of each dof
-  permuted.index_by_position();
+  const RadialLines permuted = sealfe::testing::permuted_lines(by_lines, number);
   for (unsigned int p = 0; p < n; ++p)
     ASSERT_EQ(permuted.index(p), number[p]);
   const IndexSet all = complete_index_set(n);

@@ -12,6 +12,8 @@
 // - A whole full-film run (the assembly's batches of cells computed on the threads and added in
 //   the order of the cells, the multigrid, the CG): the loads on one and on two threads are the
 //   same to the bit, on a mesh of 2 048 cells (two batches of 1 024).
+#include "../line_matrices.h"
+
 #include <sealfe/film/film_settings.h>
 #include <sealfe/film/line_jacobi.h>
 #include <sealfe/film/line_stencil_matrix.h>
@@ -39,66 +41,19 @@ using namespace dealii;
 
 namespace
 {
-using Entries = std::map<std::pair<unsigned int, unsigned int>, double>;
+using sealfe::testing::Entries;
+using sealfe::testing::make_entries;
+using sealfe::testing::make_matrix;
 using VectorType = TrilinosWrappers::MPI::Vector;
 
 /// 480 lines of 9 dofs, every fifth of 7 (lines that differ: positions near the end of a line
 /// have no partner on the next).
 RadialLines lines_in_order()
 {
-  RadialLines lines;
-  lines.start = {0};
+  std::vector<unsigned int> lengths;
   for (unsigned int k = 0; k < 480; ++k)
-    lines.start.push_back(lines.start.back() + (k % 5 == 4 ? 7 : 9));
-  lines.order.resize(lines.start.back());
-  return lines;
-}
-
-/// Symmetric, strictly diagonally dominant: within a line the dofs 1 and 2 positions away, on the
-/// next line (cyclically) the same and the next position; values that are not round numbers.
-Entries make_entries(const RadialLines &lines)
-{
-  Entries a;
-  const unsigned int n_lines = lines.start.size() - 1;
-  auto couple = [&](const unsigned int i, const unsigned int j, const double v)
-  {
-    a[{i, j}] = v;
-    a[{j, i}] = v;
-  };
-  for (unsigned int k = 0; k < n_lines; ++k)
-  {
-    const unsigned int first = lines.start[k], last = lines.start[k + 1];
-    const unsigned int next = (k + 1) % n_lines;
-    for (unsigned int p = first; p < last; ++p)
-    {
-      for (unsigned int d = 1; d <= 2 && p + d < last; ++d)
-        couple(p, p + d, -(1 + 0.3 * std::sin(0.7 * p + 1.3 * (p + d))));
-      for (unsigned int s = 0; s < 2; ++s)
-        if (p - first + s < lines.start[next + 1] - lines.start[next])
-          couple(p, lines.start[next] + p - first + s, -(0.4 + 0.1 * std::cos(1.0 * p + s)));
-    }
-  }
-  std::vector<double> row_sum(lines.size(), 0.0);
-  for (const auto &[ij, v] : a)
-    row_sum[ij.first] += std::abs(v);
-  for (unsigned int i = 0; i < lines.size(); ++i)
-    a[{i, i}] = row_sum[i] + 1 + 0.2 * std::sin(1.0 * i);
-  return a;
-}
-
-/// The Trilinos matrix of `a` with dof i numbered number[i], on MPI_COMM_SELF.
-void make_matrix(TrilinosWrappers::SparseMatrix &A, const Entries &a,
-                 const std::vector<unsigned int> &number)
-{
-  const unsigned int n = number.size();
-  DynamicSparsityPattern dsp(n, n);
-  for (const auto &[ij, v] : a)
-    dsp.add(number[ij.first], number[ij.second]);
-  const IndexSet all = complete_index_set(n);
-  A.reinit(all, all, dsp, MPI_COMM_SELF);
-  for (const auto &[ij, v] : a)
-    A.set(number[ij.first], number[ij.second], v);
-  A.compress(VectorOperation::insert);
+    lengths.push_back(k % 5 == 4 ? 7 : 9);
+  return sealfe::testing::lines_of_lengths(lengths);
 }
 
 std::vector<double> values_of(const VectorType &v)
@@ -124,14 +79,9 @@ TEST(ThreadedKernels, SameBitsOnOneAndTwoThreads)
   // at line position p
   number = identity;
   std::shuffle(number.begin(), number.end(), std::mt19937(11));
-  RadialLines permuted;
-  permuted.start = by_lines.start;
-  permuted.order.resize(n);
-  for (unsigned int p = 0; p < n; ++p)
-    permuted.order[number[p]] = p;
-  permuted.index_by_position();
+  const RadialLines permuted = sealfe::testing::permuted_lines(by_lines, number);
 
-  const Entries a = make_entries(by_lines);
+  const Entries a = make_entries(by_lines, 2);
   TrilinosWrappers::SparseMatrix A, P;
   make_matrix(A, a, identity);
   make_matrix(P, a, number);
@@ -184,7 +134,7 @@ TEST(ThreadedKernels, ProductIsTheRowSumsInTheirOrder)
   std::vector<unsigned int> identity(n);
   std::iota(identity.begin(), identity.end(), 0u);
   TrilinosWrappers::SparseMatrix A;
-  make_matrix(A, make_entries(lines), identity);
+  make_matrix(A, make_entries(lines, 2), identity);
   const Epetra_CrsMatrix &E = A.trilinos_matrix();
 
   const IndexSet all = complete_index_set(n);

@@ -3,6 +3,9 @@
 // which Epetra does on one thread.
 #pragma once
 
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
 #include <Epetra_CrsMatrix.h>
 
 namespace sealfe::numerics
@@ -14,4 +17,9 @@ namespace sealfe::numerics
 /// that is not the domain map (columns owned by other ranks: Epetra's Multiply imports them), or
 /// rows not held in one array (a matrix whose storage was not optimised by FillComplete).
 bool threaded_product(const Epetra_CrsMatrix &A, const double *x, double *y);
+
+/// dst = A src: threaded_product where it applies, else Epetra's Multiply (several ranks).
+void threaded_vmult(const dealii::TrilinosWrappers::SparseMatrix &A,
+                    dealii::TrilinosWrappers::MPI::Vector &dst,
+                    const dealii::TrilinosWrappers::MPI::Vector &src);
 } // namespace sealfe::numerics
