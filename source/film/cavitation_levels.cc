@@ -3,16 +3,20 @@
 #include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/polar_cell_values.h>
 #include <sealfe/film/reynolds_solver.h>
+#include <sealfe/numerics/ordered_batches.h>
 
 #include <deal.II/base/mpi_remote_point_evaluation.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_local_storage.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,9 +50,6 @@ void ReynoldsSolver::for_each_cell_film_matrices(const bool with_void,
 {
   const unsigned int n = fe->n_dofs_per_cell();
   const QGauss<2> quadrature(polynomial_degree + 2);
-  FEValues<2> fe_values(*mapping, *fe, quadrature,
-                        update_values | update_gradients | update_quadrature_points |
-                            update_JxW_values);
   // The built-in annulus: each cell's geometry (points, radius and angle, JxW, gradients) from
   // its radial row, as in the full-film assembly (ReynoldsSolver::assemble_system), so no
   // mapping, atan2 or square root per point; a cell that is not its row's first cell turned
@@ -58,15 +59,55 @@ void ReynoldsSolver::for_each_cell_film_matrices(const bool with_void,
   std::optional<PolarCellValues> polar;
   if (assembles_on_polar_rows())
     polar.emplace(*mapping, *fe, quadrature);
-  // (film_matrices sets G, to zero without the void)
-  FullMatrix<double> A(n, n), G(n, n);
-  Vector<double> F(n);
+  std::vector<DoFHandler<2>::active_cell_iterator> cells;
   for (const auto &cell : dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
-      cell_film_matrices(polar, fe_values, cell, with_void, A, G, F);
-      visit(cell, A, G, F);
+      cells.push_back(cell);
+      if (polar)
+        polar->reinit(cell); // the rows found in the order of the cells, before the threads
     }
+  // Batches of cells computed on deal.II's threads (each with its own FEValues and copy of the
+  // rows) and visited on this thread in the order of the cells, as by one loop (the visitors sum
+  // into global matrices: the same bits on any number of threads)
+  struct CellMatrices
+  {
+    FullMatrix<double> A, G; // (film_matrices sets G, to zero without the void)
+    Vector<double> F;
+  };
+  constexpr std::size_t batch_size = 1024;
+  std::array<std::vector<CellMatrices>, 2> batches;
+  for (auto &batch : batches)
+    batch.assign(
+        std::min(batch_size, cells.size()),
+        CellMatrices{FullMatrix<double>(n, n), FullMatrix<double>(n, n), Vector<double>(n)});
+  struct Scratch
+  {
+    FEValues<2> fe_values;
+    std::optional<PolarCellValues> polar;
+  };
+  Threads::ThreadLocalStorage<std::unique_ptr<Scratch>> scratch;
+  auto compute = [&](std::vector<CellMatrices> &batch, const std::size_t first_cell,
+                     const std::size_t first, const std::size_t last)
+  {
+    std::unique_ptr<Scratch> &own = scratch.get();
+    if (!own)
+      // FEValues can be neither copied nor moved: the aggregate is made in place
+      own.reset(new Scratch{FEValues<2>(*mapping, *fe, quadrature,
+                                        update_values | update_gradients |
+                                            update_quadrature_points | update_JxW_values),
+                            polar});
+    for (std::size_t c = first; c < last; ++c)
+      cell_film_matrices(own->polar, own->fe_values, cells[first_cell + c], with_void, batch[c].A,
+                         batch[c].G, batch[c].F);
+  };
+  auto add = [&](const std::vector<CellMatrices> &batch, const std::size_t first_cell,
+                 const std::size_t count)
+  {
+    for (std::size_t c = 0; c < count; ++c)
+      visit(cells[first_cell + c], batch[c].A, batch[c].G, batch[c].F);
+  };
+  numerics::compute_in_batches_add_in_order(cells.size(), batch_size, batches, 32, compute, add);
 }
 
 bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,

@@ -7,6 +7,7 @@
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/round_off.h>
 #include <sealfe/film/surface_features.h>
+#include <sealfe/numerics/ordered_batches.h>
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi_remote_point_evaluation.h>
@@ -311,41 +312,36 @@ void ReynoldsSolver::assemble_system()
     }
     return w;
   };
-  auto compute = [&](const std::size_t first_cell, std::vector<CellTerms> &batch)
+  auto compute = [&](std::vector<CellTerms> &batch, const std::size_t first_cell,
+                     const std::size_t first, const std::size_t last)
   {
-    const std::size_t n = std::min(batch_size, cells.size() - first_cell);
-    auto some_cells = [&](const std::size_t first, const std::size_t last)
+    std::unique_ptr<Scratch> &own = scratch.get();
+    if (!own)
+      own = new_scratch();
+    Scratch &w = *own;
+    for (std::size_t c = first; c < last; ++c)
     {
-      std::unique_ptr<Scratch> &own = scratch.get();
-      if (!own)
-        own = new_scratch();
-      Scratch &w = *own;
-      for (std::size_t c = first; c < last; ++c)
+      CellTerms &terms = batch[c];
+      w.terms = &terms;
+      const auto &cell = cells[first_cell + c];
+      cell->get_dof_indices(terms.dofs);
+      // the full-film pressure matrix and Couette + squeeze right-hand side
+      cell_film_matrices(w.polar, w.fe_values, cell, false, terms.matrix, w.unused, terms.rhs,
+                         w.at_point, w.at_polar_point);
+      if (gather)
       {
-        CellTerms &terms = batch[c];
-        w.terms = &terms;
-        const auto &cell = cells[first_cell + c];
-        cell->get_dof_indices(terms.dofs);
-        // the full-film pressure matrix and Couette + squeeze right-hand side
-        cell_film_matrices(w.polar, w.fe_values, cell, false, terms.matrix, w.unused, terms.rhs,
-                           w.at_point, w.at_polar_point);
-        if (gather)
-        {
-          // here, not where the batch is added on one thread (IndexSet's lookups are const)
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            terms.relevant[i] = locally_relevant_dofs.index_within_set(terms.dofs[i]);
-          std::copy(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), terms.weight.begin());
-          std::fill(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), 0.0);
-        }
+        // here, not where the batch is added on one thread (IndexSet's lookups are const)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          terms.relevant[i] = locally_relevant_dofs.index_within_set(terms.dofs[i]);
+        std::copy(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), terms.weight.begin());
+        std::fill(w.sums.cell_weight.begin(), w.sums.cell_weight.end(), 0.0);
       }
-    };
-    parallel::apply_to_subranges(std::size_t(0), n, some_cells, 32);
+    }
   };
   // The matrix has CellSparsity's pattern where it applies (matrix_by_position, setup_system),
   // and the cells without constrained dofs are added by position.
-  auto add = [&](const std::size_t first_cell, const std::vector<CellTerms> &batch)
+  auto add = [&](const std::vector<CellTerms> &batch, std::size_t, const std::size_t n)
   {
-    const std::size_t n = std::min(batch_size, cells.size() - first_cell);
     for (std::size_t c = 0; c < n; ++c)
     {
       const CellTerms &terms = batch[c];
@@ -363,37 +359,12 @@ void ReynoldsSolver::assemble_system()
                                system_matrix, system_rhs);
     }
   };
-
-  Threads::Task<void> next; // the batch computed while the previous one is added
-  auto start = [&](const std::size_t first_cell, const unsigned int b)
-  {
-    next = Threads::new_task(
-        std::function<void()>([&, first_cell, b]() { compute(first_cell, batches[b]); }));
-  };
   try
   {
-    if (!cells.empty())
-      start(0, 0);
-    for (std::size_t first_cell = 0, b = 0; first_cell < cells.size();
-         first_cell += batch_size, b = 1 - b)
-    {
-      next.join(); // rethrows what the batch threw
-      if (first_cell + batch_size < cells.size())
-        start(first_cell + batch_size, 1 - b);
-      add(first_cell, batches[b]);
-    }
+    numerics::compute_in_batches_add_in_order(cells.size(), batch_size, batches, 32, compute, add);
   }
   catch (...)
   {
-    // a batch still running refers to this function's objects: let it end first
-    if (next.joinable())
-      try
-      {
-        next.join();
-      }
-      catch (...)
-      {
-      }
     affine_loads.reset(false, 0, 0); // partial sums: neither valid nor kept
     throw;
   }
