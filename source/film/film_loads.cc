@@ -3,7 +3,10 @@
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/film/surface_features.h>
 
+#include <sealfe/numerics/ordered_batches.h>
+
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_local_storage.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe_values.h>
 
@@ -11,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <type_traits>
 
@@ -485,96 +489,145 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   const double w_frame =
       s.film.feature_frame_speed(s.conditions.rotor_speed, s.conditions.stator_speed);
   const QGauss<2> quadrature(s.polynomial_degree + 2); // the assembly's rule (see there)
-  FEValues<2> fe_values(*s.mapping, *s.fe, quadrature,
-                        update_values | update_gradients | update_quadrature_points |
-                            update_JxW_values);
   const unsigned int n_q = quadrature.size(), dofs_per_cell = s.fe->n_dofs_per_cell();
-  std::vector<double> p(n_q), v(n_q, 0.0), indicator(n_q, 0.0), shape_value(dofs_per_cell);
-  std::vector<Tensor<1, 2>> grad_p(n_q), grad_v(n_q), shape_grad(dofs_per_cell);
-  std::vector<std::vector<double>> dp_k(n_k, std::vector<double>(n_q, 0.0)), dv_k = dp_k;
-  std::vector<std::vector<Tensor<1, 2>>> grad_dp_k(n_k, std::vector<Tensor<1, 2>>(n_q)),
-      grad_dv_k = grad_dp_k;
-  std::vector<types::global_dof_index> dofs(dofs_per_cell);
   const bool nonlinear = s.cavitation.is_nonlinear();
   const VectorType indicator_nodal = base && nonlinear ? cavitation_indicator() : VectorType();
-
-  std::vector<std::vector<double>> sums(n_k, std::vector<double>(n_sums, 0.0));
-  double p_min = std::numeric_limits<double>::max(), p_max = -p_min, p_min_nodal = p_min;
   // reynolds and jfo keep the nodes at or above p_cav. The interpolant can dip below it only in
   // the cells at the cavity edge: some node or quadrature point within p_near of p_cav and some
   // node above it (in a cell whose nodes all sit at p_cav it stays there to round-off).
   const bool undershoot = base && nonlinear;
   const double p_near = p_cav + 1e-9 * std::max(s.pressure_scale, 1.0);
-  std::vector<DoFHandler<2>::active_cell_iterator> near_cavity;
-  Vector<double> cell_p(dofs_per_cell);
-  std::vector<Vector<double>> local_residual_k(n_k, Vector<double>(dofs_per_cell));
   const std::vector<bool> leakage_cell = leakage_cells();
   // Every cell with the values its system was assembled with (polar_assembly): in the cells on
   // the circles the leakages of the solved p are then its round-off, not the difference of two
   // cell geometries' round-off times the flow; and a polar row's cells take their values from the
   // row's first cell instead of a mapping of their own (0.82-0.89 s instead of 1.13-1.45 s for
   // the loads of the tilted seal's JFO solution at 1.05e6 unknowns, doc/performance.md "Session
-  // 21").
-  std::optional<PolarCellValues> polar;
+  // 21"). The rows are found here, in the order of the cells, before the threads copy them.
+  std::optional<PolarCellValues> polar_rows;
   if (polar_assembly())
-    polar.emplace(*s.mapping, *s.fe, quadrature);
-  Vector<double> cell_d(dofs_per_cell);
-  // values and gradients at the quadrature points of a nodal vector in the current cell
-  auto evaluate = [&](const bool turned, const auto &cell, const VectorType &nodal,
-                      std::vector<double> &values, std::vector<Tensor<1, 2>> *gradients)
-  {
-    if (turned)
-    {
-      cell->get_dof_values(nodal, cell_d);
-      polar->get_function_values(cell_d, values);
-      if (gradients)
-        polar->get_function_gradients(cell_d, *gradients);
-    }
-    else
-    {
-      fe_values.get_function_values(nodal, values);
-      if (gradients)
-        fe_values.get_function_gradients(nodal, *gradients);
-    }
-  };
-
+    polar_rows.emplace(*s.mapping, *s.fe, quadrature);
+  std::vector<DoFHandler<2>::active_cell_iterator> cells;
   for (const auto &cell : s.dof_handler.active_cell_iterators())
     if (cell->is_locally_owned())
     {
+      cells.push_back(cell);
+      if (polar_rows)
+        polar_rows->reinit(cell);
+    }
+
+  // The cells in chunks of a fixed size, each chunk's sums taken from zero in the order of its
+  // cells on one of deal.II's threads, the chunks' sums then added in their order: the same bits
+  // on any number of threads (the chunks do not depend on it), within the sums' round-off of one
+  // loop over the cells.
+  struct Chunk
+  {
+    std::vector<std::vector<double>> sums; // [k][m]
+    double p_min = 0, p_max = 0;
+    std::vector<DoFHandler<2>::active_cell_iterator> near_cavity; // in the order of the cells
+  };
+  // what a thread needs to evaluate its cells
+  struct Scratch
+  {
+    FEValues<2> fe_values;
+    std::optional<PolarCellValues> polar;
+    std::vector<double> p, v, indicator, shape_value;
+    std::vector<Tensor<1, 2>> grad_p, grad_v, shape_grad;
+    std::vector<std::vector<double>> dp_k, dv_k;
+    std::vector<std::vector<Tensor<1, 2>>> grad_dp_k, grad_dv_k;
+    std::vector<types::global_dof_index> dofs;
+    Vector<double> cell_p, cell_d;
+    std::vector<Vector<double>> local_residual_k;
+  };
+  Threads::ThreadLocalStorage<std::unique_ptr<Scratch>> scratch;
+  auto new_scratch = [&]()
+  {
+    // FEValues can be neither copied nor moved: the aggregate is made in place
+    std::unique_ptr<Scratch> w(
+        new Scratch{FEValues<2>(*s.mapping, *s.fe, quadrature,
+                                update_values | update_gradients | update_quadrature_points |
+                                    update_JxW_values),
+                    polar_rows, std::vector<double>(n_q), std::vector<double>(n_q, 0.0),
+                    std::vector<double>(n_q, 0.0), std::vector<double>(dofs_per_cell),
+                    std::vector<Tensor<1, 2>>(n_q), std::vector<Tensor<1, 2>>(n_q),
+                    std::vector<Tensor<1, 2>>(dofs_per_cell),
+                    std::vector<std::vector<double>>(n_k, std::vector<double>(n_q, 0.0)),
+                    std::vector<std::vector<double>>(n_k, std::vector<double>(n_q, 0.0)),
+                    std::vector<std::vector<Tensor<1, 2>>>(n_k, std::vector<Tensor<1, 2>>(n_q)),
+                    std::vector<std::vector<Tensor<1, 2>>>(n_k, std::vector<Tensor<1, 2>>(n_q)),
+                    std::vector<types::global_dof_index>(dofs_per_cell),
+                    Vector<double>(dofs_per_cell), Vector<double>(dofs_per_cell),
+                    std::vector<Vector<double>>(n_k, Vector<double>(dofs_per_cell))});
+    return w;
+  };
+  // the sums of the cells [first, last) of `cells` into `chunk`
+  auto integrate_cells = [&](const std::size_t first, const std::size_t last, Chunk &chunk)
+  {
+    std::unique_ptr<Scratch> &own = scratch.get();
+    if (!own)
+      own = new_scratch();
+    Scratch &w = *own;
+    FEValues<2> &fe_values = w.fe_values;
+    std::optional<PolarCellValues> &polar = w.polar;
+    std::vector<std::vector<double>> &sums = chunk.sums;
+    sums.assign(n_k, std::vector<double>(n_sums, 0.0));
+    chunk.near_cavity.clear();
+    double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
+    // values and gradients at the quadrature points of a nodal vector in the current cell
+    auto evaluate = [&](const bool turned, const auto &cell, const VectorType &nodal,
+                        std::vector<double> &values, std::vector<Tensor<1, 2>> *gradients)
+    {
+      if (turned)
+      {
+        cell->get_dof_values(nodal, w.cell_d);
+        polar->get_function_values(w.cell_d, values);
+        if (gradients)
+          polar->get_function_gradients(w.cell_d, *gradients);
+      }
+      else
+      {
+        fe_values.get_function_values(nodal, values);
+        if (gradients)
+          fe_values.get_function_gradients(nodal, *gradients);
+      }
+    };
+    for (std::size_t c = first; c < last; ++c)
+    {
+      const auto &cell = cells[c];
       const bool turned = polar && polar->reinit(cell);
       if (!turned)
         fe_values.reinit(cell);
-      evaluate(turned, cell, s.locally_relevant_solution, p, &grad_p);
+      evaluate(turned, cell, s.locally_relevant_solution, w.p, &w.grad_p);
       if (jfo)
-        evaluate(turned, cell, s.locally_relevant_void, v, &grad_v);
+        evaluate(turned, cell, s.locally_relevant_void, w.v, &w.grad_v);
       for (unsigned int k = 0; k < n_k; ++k)
       {
         if (k < dp_nodal.size() && dp_nodal[k])
-          evaluate(turned, cell, *dp_nodal[k], dp_k[k], &grad_dp_k[k]);
+          evaluate(turned, cell, *dp_nodal[k], w.dp_k[k], &w.grad_dp_k[k]);
         if (k < dv_nodal.size() && dv_nodal[k])
-          evaluate(turned, cell, *dv_nodal[k], dv_k[k], &grad_dv_k[k]);
-        local_residual_k[k] = 0;
+          evaluate(turned, cell, *dv_nodal[k], w.dv_k[k], &w.grad_dv_k[k]);
+        w.local_residual_k[k] = 0;
       }
       if (base && nonlinear)
-        evaluate(turned, cell, indicator_nodal, indicator, nullptr);
+        evaluate(turned, cell, indicator_nodal, w.indicator, nullptr);
       auto JxW = [&](const unsigned int q) { return turned ? polar->JxW(q) : fe_values.JxW(q); };
       if (undershoot)
       {
-        cell->get_dof_values(s.locally_relevant_solution, cell_p);
-        const bool edge = std::min(*std::min_element(p.begin(), p.end()),
-                                   *std::min_element(cell_p.begin(), cell_p.end())) <= p_near &&
-                          *std::max_element(cell_p.begin(), cell_p.end()) > p_near;
+        cell->get_dof_values(s.locally_relevant_solution, w.cell_p);
+        const bool edge = std::min(*std::min_element(w.p.begin(), w.p.end()),
+                                   *std::min_element(w.cell_p.begin(), w.cell_p.end())) <= p_near &&
+                          *std::max_element(w.cell_p.begin(), w.cell_p.end()) > p_near;
         if (edge)
-          near_cavity.push_back(cell);
+          chunk.near_cavity.push_back(cell);
         else
           for (unsigned int q = 0; q < n_q; ++q)
-            sums[0][15] += std::min(p[q] - p_cav, 0.0) * JxW(q);
+            sums[0][15] += std::min(w.p[q] - p_cav, 0.0) * JxW(q);
       }
       PointState x;
       x.tau = jfo ? s.streamline_tau(cell) : 0.0;
       // the residual enters the sums only through the leakages (leakage_cells)
       const bool on_circle = leakage_cell[cell->active_cell_index()];
-      cell->get_dof_indices(dofs);
+      cell->get_dof_indices(w.dofs);
       for (unsigned int q = 0; q < n_q; ++q)
       {
         if (turned)
@@ -589,21 +642,21 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
           x.f = s.local_film(x.x);
         }
         x.JxW = JxW(q);
-        x.p = p[q];
-        x.v = v[q];
-        x.indicator = indicator[q];
-        x.grad_p = grad_p[q];
-        x.grad_v = grad_v[q];
+        x.p = w.p[q];
+        x.v = w.v[q];
+        x.indicator = w.indicator[q];
+        x.grad_p = w.grad_p[q];
+        x.grad_v = w.grad_v[q];
         if (on_circle)
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
           {
-            shape_grad[i] = turned ? polar->shape_grad(i, q) : fe_values.shape_grad(i, q);
-            shape_value[i] = turned ? polar->shape_value(i, q) : fe_values.shape_value(i, q);
+            w.shape_grad[i] = turned ? polar->shape_grad(i, q) : fe_values.shape_grad(i, q);
+            w.shape_value[i] = turned ? polar->shape_value(i, q) : fe_values.shape_value(i, q);
           }
         if (base)
         {
-          p_min = std::min(p_min, p[q]);
-          p_max = std::max(p_max, p[q]);
+          p_min = std::min(p_min, w.p[q]);
+          p_max = std::max(p_max, w.p[q]);
         }
         for (unsigned int k = 0; k < n_k; ++k)
         {
@@ -614,20 +667,56 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
             d.dh = d.direction->dh ? d.direction->dh(x.f.r, x.f.theta) : 0.0;
             d.dh_t = perturbation_squeeze(*d.direction, x.f.r, x.f.theta, w_frame);
           }
-          d.dp = dp_k[k][q];
-          d.dv = dv_k[k][q];
-          d.grad_dp = grad_dp_k[k][q];
-          d.grad_dv = grad_dv_k[k][q];
+          d.dp = w.dp_k[k][q];
+          d.dv = w.dv_k[k][q];
+          d.grad_dp = w.grad_dp_k[k][q];
+          d.grad_dv = w.grad_dv_k[k][q];
           add_pressure_loads(x, d, sums[k]);
           add_friction_and_squeeze(x, d, sums[k]);
           if (on_circle)
-            add_residual(x, d, shape_grad, shape_value, local_residual_k[k]);
+            add_residual(x, d, w.shape_grad, w.shape_value, w.local_residual_k[k]);
         }
       }
       if (on_circle)
         for (unsigned int k = 0; k < n_k; ++k)
-          add_leakages(dofs, local_residual_k[k], sums[k]);
+          add_leakages(w.dofs, w.local_residual_k[k], sums[k]);
     }
+    chunk.p_min = p_min;
+    chunk.p_max = p_max;
+  };
+
+  std::vector<std::vector<double>> sums(n_k, std::vector<double>(n_sums, 0.0));
+  double p_min = std::numeric_limits<double>::max(), p_max = -p_min, p_min_nodal = p_min;
+  std::vector<DoFHandler<2>::active_cell_iterator> near_cavity;
+  constexpr std::size_t chunk_size = 64, chunks_per_batch = 16;
+  const std::size_t n_chunks = (cells.size() + chunk_size - 1) / chunk_size;
+  std::array<std::vector<Chunk>, 2> batches;
+  for (auto &batch : batches)
+    batch.resize(std::min(chunks_per_batch, n_chunks));
+  numerics::compute_in_batches_add_in_order(
+      n_chunks, chunks_per_batch, batches, 1,
+      [&](std::vector<Chunk> &batch, const std::size_t first_chunk, const std::size_t begin,
+          const std::size_t end)
+      {
+        for (std::size_t c = begin; c < end; ++c)
+        {
+          const std::size_t first_cell = (first_chunk + c) * chunk_size;
+          integrate_cells(first_cell, std::min(first_cell + chunk_size, cells.size()), batch[c]);
+        }
+      },
+      [&](const std::vector<Chunk> &batch, std::size_t, const std::size_t count)
+      {
+        for (std::size_t c = 0; c < count; ++c)
+        {
+          const Chunk &chunk = batch[c];
+          for (unsigned int k = 0; k < n_k; ++k)
+            for (unsigned int m = 0; m < n_sums; ++m)
+              sums[k][m] += chunk.sums[k][m];
+          p_min = std::min(p_min, chunk.p_min);
+          p_max = std::max(p_max, chunk.p_max);
+          near_cavity.insert(near_cavity.end(), chunk.near_cavity.begin(), chunk.near_cavity.end());
+        }
+      });
   if (base)
     for (const auto i : s.locally_owned_dofs)
     {

@@ -12,7 +12,8 @@
 // - A whole full-film run (the assembly's batches of cells computed on the threads and added in
 //   the order of the cells, the multigrid, the CG): the loads on one and on two threads are the
 //   same to the bit, on a mesh of 2 048 cells (two batches of 1 024); so are the cavitation
-//   models' (JFO, Reynolds), whose cell matrices are made in batches on the threads too.
+//   models' (JFO, Reynolds), whose cell matrices are made in batches on the threads too, and
+//   whose loads are summed in chunks of 64 cells on the threads (32 chunks here).
 #include "../line_matrices.h"
 
 #include <sealfe/film/film_settings.h>

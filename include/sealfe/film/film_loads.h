@@ -57,7 +57,8 @@ struct FilmLoads
 
 /// A perturbation direction of the film: dh/dq (m per unit q) and d(dh/dt)/d(qdot) (m/s per unit
 /// qdot), as functions of (r, theta). For q = (z, tilt_x, tilt_y): dh/dq = 1, r sin(theta),
-/// -r cos(theta) (film_thickness.h), and the same for the rates.
+/// -r cos(theta) (film_thickness.h), and the same for the rates. The loads' cell loop calls both
+/// from deal.II's threads at once: they must be safe to call concurrently (pure functions).
 struct FilmPerturbation
 {
   std::function<double(double, double)> dh;
