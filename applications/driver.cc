@@ -306,7 +306,8 @@ int run_command_line(int argc, char **argv, const std::vector<SubCommand> &comma
       summary["git_revision"] = git_revision;
       summary["mpi_ranks"] = Utilities::MPI::n_mpi_processes(comm);
       const numerics::BlasKernels blas = numerics::blas_kernels();
-      summary["blas_kernels"] = {{"kernels", blas.kernels}, {"chosen_by", blas.chosen_by}};
+      summary["blas_kernels"] = {
+          {"kernels", blas.kernels}, {"chosen_by", blas.chosen_by}, {"threads", blas.threads}};
       summary["wall_time"] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       check_results(summary, staging);

@@ -9,6 +9,7 @@
 #include <sealfe/numerics/blas_kernels.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <cstdlib>
 #include <string>
@@ -55,6 +56,8 @@ int main(int argc, char **argv)
   // products and line solves and the CG's products use (doc/performance.md, Session 36); `mpirun
   // -np 2` has one each. DEAL_II_NUM_THREADS in the environment caps it.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
+  // the BLAS (MUMPS's dense fronts) on the same threads, not on every core of the node per rank
+  sealfe::numerics::use_blas_threads(static_cast<int>(dealii::MultithreadInfo::n_threads()));
   using namespace sealfe::applications;
   return run_command_line(argc, argv,
                           {solve_command(), coefficients_command(), table_command(),

@@ -20,11 +20,13 @@ esac
 # liblz4-dev: the VTU writer compresses with LZ4 (VTK's vtkLZ4DataCompressor).
 # libmumps-dev: the sparse direct solver calls MUMPS directly (deal.II's Trilinos and PETSc
 # bring it too).
-# libopenblas0-serial: an optimised BLAS behind the reference one Debian links by default (the
+# libopenblas0-pthread: an optimised BLAS behind the reference one Debian links by default (the
 # MUMPS factorisations of big cavitation systems run their dense fronts in it: 13.4 -> 9.4 s at
-# 1e6 unknowns, doc/performance.md "Direct solver")
+# 1e6 unknowns, doc/performance.md "Direct solver"), multithreaded: sealfe gives it the rank's
+# threads (numerics::use_blas_threads; doc/performance.md, Session 37). The alternatives system
+# prefers it to a single-threaded libopenblas0-serial installed beside it.
 packages=(cmake g++ make libdeal.ii-dev libboost-dev nlohmann-json3-dev mpi-default-bin
-          mpi-default-dev python3-numpy python3-matplotlib libopenblas0-serial liblz4-dev
+          mpi-default-dev python3-numpy python3-matplotlib libopenblas0-pthread liblz4-dev
           libmumps-dev)
 if [ "$mode" = test ]; then
   packages+=(libgtest-dev gmsh libvtk9-dev libbenchmark-dev)

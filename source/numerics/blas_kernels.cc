@@ -11,6 +11,17 @@ namespace
 {
 using NameFunction = char *(*)();
 using VoidFunction = void (*)();
+using GetThreadsFunction = int (*)();
+using SetThreadsFunction = void (*)(int);
+
+/// OpenBLAS's thread count, looked up in the loaded libraries like its kernel selection (a
+/// single-threaded OpenBLAS has both functions and always runs on one thread).
+int openblas_threads()
+{
+  const auto get =
+      reinterpret_cast<GetThreadsFunction>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return get ? get() : 0;
+}
 
 /// OpenBLAS's run-time kernel selection, looked up in the loaded libraries: a BLAS without it
 /// (reference BLAS, BLIS, MKL, an OpenBLAS built for one CPU) is left alone.
@@ -43,7 +54,8 @@ BlasKernels found(const OpenBlasDynamicArch &openblas)
 {
   if (!openblas.available())
     return {};
-  return {openblas.corename(), std::getenv("OPENBLAS_CORETYPE") ? "OPENBLAS_CORETYPE" : "OpenBLAS"};
+  return {openblas.corename(), std::getenv("OPENBLAS_CORETYPE") ? "OPENBLAS_CORETYPE" : "OpenBLAS",
+          openblas_threads()};
 }
 
 BlasKernels state;
@@ -67,12 +79,23 @@ BlasKernels use_cpu_blas_kernels()
   openblas.quit();
   openblas.init();
   unsetenv("OPENBLAS_CORETYPE");
-  state = {openblas.corename(), "sealfe"};
+  state = {openblas.corename(), "sealfe", openblas_threads()};
   return state;
 }
 
 BlasKernels blas_kernels()
 {
-  return decided ? state : found(OpenBlasDynamicArch());
+  BlasKernels now = decided ? state : found(OpenBlasDynamicArch());
+  now.threads = openblas_threads();
+  return now;
+}
+
+int use_blas_threads(const int threads)
+{
+  const auto set =
+      reinterpret_cast<SetThreadsFunction>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (set && threads >= 1)
+    set(threads);
+  return openblas_threads();
 }
 } // namespace sealfe::numerics

@@ -34,6 +34,20 @@ TEST(BlasKernels, VectorKernelsWhereTheCpuHasThem)
   EXPECT_TRUE(blas.chosen_by == "OpenBLAS" || blas.chosen_by == "sealfe") << blas.chosen_by;
 }
 
+TEST(BlasKernels, ThreadsAreTheOnesGiven)
+{
+  // use_blas_threads caps OpenBLAS at the rank's threads (applications/main.cc; one here, the test
+  // main's); a single-threaded OpenBLAS stays at one
+  if (blas_kernels().threads == 0)
+    GTEST_SKIP() << "the BLAS is not an OpenBLAS";
+  EXPECT_EQ(blas_kernels().threads, 1); // the test main's
+  const int two = sealfe::numerics::use_blas_threads(2);
+  EXPECT_TRUE(two == 1 || two == 2) << two;
+  EXPECT_EQ(blas_kernels().threads, two);
+  EXPECT_EQ(sealfe::numerics::use_blas_threads(1), 1);
+  EXPECT_EQ(sealfe::numerics::use_blas_threads(0), 1); // not a count: nothing changes
+}
+
 TEST(BlasKernels, CalledAgainChangesNothing)
 {
   const auto before = blas_kernels();
