@@ -498,6 +498,10 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   const bool undershoot = base && nonlinear;
   const double p_near = p_cav + 1e-9 * std::max(s.pressure_scale, 1.0);
   const std::vector<bool> leakage_cell = leakage_cells();
+  // the threads' lookups (add_leakages) in compressed sets: IndexSet::compress, which a lookup
+  // calls, writes the set
+  s.inner_boundary_dofs.compress();
+  s.outer_boundary_dofs.compress();
   // Every cell with the values its system was assembled with (polar_assembly): in the cells on
   // the circles the leakages of the solved p are then its round-off, not the difference of two
   // cell geometries' round-off times the flow; and a polar row's cells take their values from the

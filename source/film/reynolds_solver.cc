@@ -238,6 +238,9 @@ void ReynoldsSolver::assemble_system()
       if (polar)
         polar->reinit(cell);
     }
+  // the threads' lookups (index_within_set) in a compressed set: IndexSet::compress, which a
+  // lookup calls, writes the set
+  locally_relevant_dofs.compress();
 
   // Batches of cells: their cell matrices, right-hand sides and load parts computed on deal.II's
   // threads (each thread with its own FEValues and copy of the rows), and added to the system in

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <strings.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace sealfe::numerics
@@ -94,8 +95,12 @@ int use_blas_threads(const int threads)
 {
   const auto set =
       reinterpret_cast<SetThreadsFunction>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (set && threads >= 1)
-    set(threads);
+  // OpenBLAS's own count before the first call: OPENBLAS_NUM_THREADS (or OMP_NUM_THREADS) where
+  // set, else the cores this process may run on (a launcher's binding). deal.II's count ignores
+  // the binding, so it is only a cap: never more threads than OpenBLAS would take by itself.
+  static const int own_count = openblas_threads();
+  if (set && threads >= 1 && own_count >= 1)
+    set(std::min(threads, own_count));
   return openblas_threads();
 }
 } // namespace sealfe::numerics

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -37,13 +39,20 @@ TEST(BlasKernels, VectorKernelsWhereTheCpuHasThem)
 TEST(BlasKernels, ThreadsAreTheOnesGiven)
 {
   // use_blas_threads caps OpenBLAS at the rank's threads (applications/main.cc; one here, the test
-  // main's); a single-threaded OpenBLAS stays at one
+  // main's) and at OpenBLAS's own count; a single-threaded OpenBLAS stays at one
   if (blas_kernels().threads == 0)
     GTEST_SKIP() << "the BLAS is not an OpenBLAS";
   EXPECT_EQ(blas_kernels().threads, 1); // the test main's
   const int two = sealfe::numerics::use_blas_threads(2);
   EXPECT_TRUE(two == 1 || two == 2) << two;
   EXPECT_EQ(blas_kernels().threads, two);
+  // never more than OpenBLAS's own count, at most the cores this process may run on (OpenBLAS
+  // alone would take up to its compiled limit, 64 or more)
+  cpu_set_t allowed;
+  ASSERT_EQ(sched_getaffinity(0, sizeof(allowed), &allowed), 0);
+  const int many = sealfe::numerics::use_blas_threads(1000);
+  EXPECT_GE(many, 1);
+  EXPECT_LE(many, CPU_COUNT(&allowed));
   EXPECT_EQ(sealfe::numerics::use_blas_threads(1), 1);
   EXPECT_EQ(sealfe::numerics::use_blas_threads(0), 1); // not a count: nothing changes
 }

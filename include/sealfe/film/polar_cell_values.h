@@ -114,7 +114,26 @@ private:
   unsigned int n, n_q;
   std::vector<double> values; // [q n + i], the same on every cell (FE_Q)
   std::map<std::array<long long, 3>, Row> rows;
-  const Row *row = nullptr;
+  /// The current cell's row, a pointer into `rows`. A copy (one per thread) has rows of its own
+  /// and no current cell until its reinit(): the pointer is not copied.
+  struct CurrentRow
+  {
+    const Row *row = nullptr;
+    CurrentRow() = default;
+    CurrentRow(const CurrentRow &) {}
+    CurrentRow &operator=(const CurrentRow &)
+    {
+      row = nullptr;
+      return *this;
+    }
+    CurrentRow &operator=(const Row *r)
+    {
+      row = r;
+      return *this;
+    }
+    const Row *operator->() const { return row; }
+  };
+  CurrentRow row;
   double c = 1, s = 0;   // cos, sin of the angle from the row's first cell to this one
   double cell_angle = 0; // that angle (atan2(s, c))
   std::vector<dealii::Point<2>> points;

@@ -16,8 +16,8 @@ struct BlasKernels
   /// Who chose them: "OpenBLAS" (its own CPU detection), "OPENBLAS_CORETYPE" (the user's
   /// environment) or "sealfe" (OpenBLAS fell back to Prescott on a CPU with AVX2 or AVX-512).
   std::string chosen_by;
-  /// Threads OpenBLAS runs a call on (1 for a single-threaded build; 0 when unknown: not an
-  /// OpenBLAS).
+  /// Threads OpenBLAS may run a call on (small calls take one; 1 for a single-threaded build;
+  /// 0 when unknown: not an OpenBLAS).
   int threads = 0;
 };
 
@@ -35,12 +35,12 @@ BlasKernels use_cpu_blas_kernels();
 /// The state after the last use_cpu_blas_kernels() (what it found if it was never called).
 BlasKernels blas_kernels();
 
-/// Lets a multithreaded OpenBLAS (Debian's libopenblas0-pthread) run each call on at most
-/// `threads` threads, the threads deal.II gives this rank (MultithreadInfo::n_threads(): the
-/// node's cores shared by its ranks), so that ranks on one node do not oversubscribe its cores
-/// (OpenBLAS's own default is every core of the node, per process). MUMPS's dense fronts run in
-/// it: on two threads the JFO's factorisations of 1e6 unknowns take ~0.5 s less
-/// (doc/performance.md, Session 37). Nothing changes with a single-threaded or another BLAS.
-/// Returns the threads OpenBLAS now uses (0: not an OpenBLAS).
+/// Caps a multithreaded OpenBLAS (Debian's libopenblas0-pthread) at `threads` threads a call,
+/// the threads deal.II gives this rank (MultithreadInfo::n_threads(): the node's cores shared by
+/// its ranks), never above OpenBLAS's own count (OPENBLAS_NUM_THREADS where set, else the cores
+/// the process may run on): ranks on one node that no launcher binds then do not take every core
+/// each. MUMPS's dense fronts run in it: on two threads the JFO's factorisations of 1e6 unknowns
+/// take ~0.5 s less (doc/performance.md, Session 37). Nothing changes with a single-threaded or
+/// another BLAS. Returns the threads OpenBLAS may now use (0: not an OpenBLAS).
 int use_blas_threads(int threads);
 } // namespace sealfe::numerics

@@ -4,6 +4,7 @@
 // has the same bits on any number of threads.
 #pragma once
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/thread_management.h>
 
@@ -16,7 +17,8 @@ namespace sealfe::numerics
 {
 /// For the items 0 .. n_items - 1 in batches of `batch_size`: compute(batch, first_item, begin,
 /// end) fills the results of the items first_item + [begin, end) into `batch`, on any thread
-/// (several calls per batch run at once, on disjoint ranges of at least `grain` items); then
+/// (several calls per batch run at once, on disjoint ranges: a range is split while it is longer
+/// than `grain` items); then
 /// add(batch, first_item, count) takes the batch's `count` results on the calling thread, in the
 /// order of the batches. Two batches alternate: the next one computes while `add` takes the
 /// last. An exception from either is rethrown after the batch still running has ended (it refers
@@ -26,6 +28,7 @@ void compute_in_batches_add_in_order(const std::size_t n_items, const std::size_
                                      std::array<Batch, 2> &batches, const std::size_t grain,
                                      const Compute &compute, const Add &add)
 {
+  AssertThrow(batch_size > 0, dealii::ExcMessage("compute_in_batches_add_in_order: empty batches"));
   auto compute_batch = [&](const std::size_t first_item, Batch &batch)
   {
     const std::size_t count = std::min(batch_size, n_items - first_item);
