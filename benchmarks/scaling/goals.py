@@ -13,7 +13,7 @@ degree 2, `Error estimate = false`, `Write fields = false` unless said.
 |---|---|
 | full film, one rank, under 4 s | tilted, 128 x 2048 cells, 1 052 672 dofs, `auto` (cg-gmg) |
 | two ranks at least 1.6x one rank, same force_z (1e-10) | the same on `mpirun -np 2` |
-| (reported) one rank held to one thread, and two ranks against it | the same, `DEAL_II_NUM_THREADS=1` |
+| (reported) one rank held to one thread, and two ranks against it | the same, `DEAL_II_NUM_THREADS=1` (full film and JFO) |
 | fields at most 20 % of the solve | the same with `Write fields = true`: output / (in-process - output) |
 | JFO at most 3x the full film of its mesh | tilted 256 x 1024 (1 050 624 dofs); wavy_jfo 64 x 4096 (1 056 768) |
 | JFO on two ranks at least 1.6x one rank, same force_z | tilted 256 x 1024 |
@@ -53,6 +53,7 @@ def cases(quick):
             ("full film, JFO mesh", tilted_jfo_mesh),
             ("JFO", dict(tilted_jfo_mesh, cavitation="jfo")),
             ("JFO, 2 ranks", dict(tilted_jfo_mesh, cavitation="jfo", ranks=2)),
+            ("JFO, one thread", dict(tilted_jfo_mesh, cavitation="jfo", env=one_thread)),
             ("wavy full film", wavy_mesh),
             ("wavy JFO", dict(wavy_mesh, cavitation="jfo"))]
 
@@ -123,6 +124,9 @@ def summarise(rows, rounds):
         ("JFO / full film, wavy, in-process", "wavy JFO",
          ratio("wavy JFO", "wavy full film", "inprocess"), "<=", 3.0),
         ("JFO: 2 ranks / 1 rank speed-up", "JFO", ratio("JFO", "JFO, 2 ranks"), ">=", 1.6),
+        ("JFO, one rank of one thread [s]", "JFO", series("JFO, one thread"), "", None),
+        ("JFO: 2 ranks / 1 rank of one thread", "JFO", ratio("JFO, one thread", "JFO, 2 ranks"), "",
+         None),
         ("JFO: 2 ranks' force_z, relative difference", "JFO", force_diff("JFO, 2 ranks", "JFO"), "<=",
          1e-10),
         ("bare sealfe solve [s]", "bare solve", series("bare solve"), "<", 0.3),
