@@ -59,14 +59,8 @@ void ReynoldsSolver::for_each_cell_film_matrices(const bool with_void,
   std::optional<PolarCellValues> polar;
   if (assembles_on_polar_rows())
     polar.emplace(*mapping, *fe, quadrature);
-  std::vector<DoFHandler<2>::active_cell_iterator> cells;
-  for (const auto &cell : dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
-    {
-      cells.push_back(cell);
-      if (polar)
-        polar->reinit(cell); // the rows found in the order of the cells, before the threads
-    }
+  const std::vector<DoFHandler<2>::active_cell_iterator> cells =
+      owned_cells_finding_rows(dof_handler, polar);
   // Batches of cells computed on deal.II's threads (each with its own FEValues and copy of the
   // rows) and visited on this thread in the order of the cells, as by one loop (the visitors sum
   // into global matrices: the same bits on any number of threads)

@@ -511,14 +511,8 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
   std::optional<PolarCellValues> polar_rows;
   if (polar_assembly())
     polar_rows.emplace(*s.mapping, *s.fe, quadrature);
-  std::vector<DoFHandler<2>::active_cell_iterator> cells;
-  for (const auto &cell : s.dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
-    {
-      cells.push_back(cell);
-      if (polar_rows)
-        polar_rows->reinit(cell);
-    }
+  const std::vector<DoFHandler<2>::active_cell_iterator> cells =
+      owned_cells_finding_rows(s.dof_handler, polar_rows);
 
   // The cells in chunks of a fixed size, each chunk's sums taken from zero in the order of its
   // cells on one of deal.II's threads, the chunks' sums then added in their order: the same bits
@@ -530,9 +524,25 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
     double p_min = 0, p_max = 0;
     std::vector<DoFHandler<2>::active_cell_iterator> near_cavity; // in the order of the cells
   };
-  // what a thread needs to evaluate its cells
+  // what a thread needs to evaluate its cells: values at the n_q points (p, v, the indicator and
+  // the n_k perturbations'), the shapes and residuals of the n dofs
   struct Scratch
   {
+    Scratch(const ReynoldsSolver &s, const Quadrature<2> &quadrature,
+            const std::optional<PolarCellValues> &rows, const unsigned int n_k)
+        : fe_values(*s.mapping, *s.fe, quadrature,
+                    update_values | update_gradients | update_quadrature_points |
+                        update_JxW_values),
+          polar(rows), p(quadrature.size()), v(quadrature.size(), 0.0),
+          indicator(quadrature.size(), 0.0), shape_value(s.fe->n_dofs_per_cell()),
+          grad_p(quadrature.size()), grad_v(quadrature.size()), shape_grad(s.fe->n_dofs_per_cell()),
+          dp_k(n_k, std::vector<double>(quadrature.size(), 0.0)), dv_k(dp_k),
+          grad_dp_k(n_k, std::vector<Tensor<1, 2>>(quadrature.size())), grad_dv_k(grad_dp_k),
+          dofs(s.fe->n_dofs_per_cell()), cell_p(s.fe->n_dofs_per_cell()),
+          cell_d(s.fe->n_dofs_per_cell()),
+          local_residual_k(n_k, Vector<double>(s.fe->n_dofs_per_cell()))
+    {
+    }
     FEValues<2> fe_values;
     std::optional<PolarCellValues> polar;
     std::vector<double> p, v, indicator, shape_value;
@@ -544,32 +554,12 @@ LoadIntegrator::integrate(const std::vector<const FilmPerturbation *> &perturbat
     std::vector<Vector<double>> local_residual_k;
   };
   Threads::ThreadLocalStorage<std::unique_ptr<Scratch>> scratch;
-  auto new_scratch = [&]()
-  {
-    // FEValues can be neither copied nor moved: the aggregate is made in place
-    std::unique_ptr<Scratch> w(
-        new Scratch{FEValues<2>(*s.mapping, *s.fe, quadrature,
-                                update_values | update_gradients | update_quadrature_points |
-                                    update_JxW_values),
-                    polar_rows, std::vector<double>(n_q), std::vector<double>(n_q, 0.0),
-                    std::vector<double>(n_q, 0.0), std::vector<double>(dofs_per_cell),
-                    std::vector<Tensor<1, 2>>(n_q), std::vector<Tensor<1, 2>>(n_q),
-                    std::vector<Tensor<1, 2>>(dofs_per_cell),
-                    std::vector<std::vector<double>>(n_k, std::vector<double>(n_q, 0.0)),
-                    std::vector<std::vector<double>>(n_k, std::vector<double>(n_q, 0.0)),
-                    std::vector<std::vector<Tensor<1, 2>>>(n_k, std::vector<Tensor<1, 2>>(n_q)),
-                    std::vector<std::vector<Tensor<1, 2>>>(n_k, std::vector<Tensor<1, 2>>(n_q)),
-                    std::vector<types::global_dof_index>(dofs_per_cell),
-                    Vector<double>(dofs_per_cell), Vector<double>(dofs_per_cell),
-                    std::vector<Vector<double>>(n_k, Vector<double>(dofs_per_cell))});
-    return w;
-  };
   // the sums of the cells [first, last) of `cells` into `chunk`
   auto integrate_cells = [&](const std::size_t first, const std::size_t last, Chunk &chunk)
   {
     std::unique_ptr<Scratch> &own = scratch.get();
     if (!own)
-      own = new_scratch();
+      own = std::make_unique<Scratch>(s, quadrature, polar_rows, n_k);
     Scratch &w = *own;
     FEValues<2> &fe_values = w.fe_values;
     std::optional<PolarCellValues> &polar = w.polar;

@@ -134,4 +134,17 @@ void PolarCellValues::turn_gradients() const
   grads_turned = true;
 }
 
+std::vector<DoFHandler<2>::active_cell_iterator>
+owned_cells_finding_rows(const DoFHandler<2> &dof_handler, std::optional<PolarCellValues> &polar)
+{
+  std::vector<DoFHandler<2>::active_cell_iterator> cells;
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+    {
+      cells.push_back(cell);
+      if (polar)
+        polar->reinit(cell);
+    }
+  return cells;
+}
 } // namespace sealfe

@@ -230,14 +230,8 @@ void ReynoldsSolver::assemble_system()
   std::optional<PolarCellValues> polar;
   if (assembles_on_polar_rows())
     polar.emplace(*mapping, *fe, quadrature);
-  std::vector<DoFHandler<2>::active_cell_iterator> cells;
-  for (const auto &cell : dof_handler.active_cell_iterators())
-    if (cell->is_locally_owned())
-    {
-      cells.push_back(cell);
-      if (polar)
-        polar->reinit(cell);
-    }
+  const std::vector<DoFHandler<2>::active_cell_iterator> cells =
+      owned_cells_finding_rows(dof_handler, polar);
   // the threads' lookups (index_within_set) in a compressed set: IndexSet::compress, which a
   // lookup calls, writes the set
   locally_relevant_dofs.compress();

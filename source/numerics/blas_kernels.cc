@@ -55,8 +55,7 @@ BlasKernels found(const OpenBlasDynamicArch &openblas)
 {
   if (!openblas.available())
     return {};
-  return {openblas.corename(), std::getenv("OPENBLAS_CORETYPE") ? "OPENBLAS_CORETYPE" : "OpenBLAS",
-          openblas_threads()};
+  return {openblas.corename(), std::getenv("OPENBLAS_CORETYPE") ? "OPENBLAS_CORETYPE" : "OpenBLAS"};
 }
 
 BlasKernels state;
@@ -80,14 +79,14 @@ BlasKernels use_cpu_blas_kernels()
   openblas.quit();
   openblas.init();
   unsetenv("OPENBLAS_CORETYPE");
-  state = {openblas.corename(), "sealfe", openblas_threads()};
+  state = {openblas.corename(), "sealfe"};
   return state;
 }
 
 BlasKernels blas_kernels()
 {
   BlasKernels now = decided ? state : found(OpenBlasDynamicArch());
-  now.threads = openblas_threads();
+  now.threads = openblas_threads(); // (use_blas_threads may have changed it since)
   return now;
 }
 

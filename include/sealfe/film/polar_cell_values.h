@@ -7,6 +7,7 @@
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/std_cxx20/iota_view.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
@@ -14,6 +15,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <vector>
 
 namespace sealfe
@@ -141,4 +143,11 @@ private:
   mutable bool grads_turned = false;
   unsigned int turned = 0;
 };
+
+/// The locally owned active cells of `dof_handler` in their order; where `polar` is set, their
+/// rows are found in that order too (reinit on each), so that the copies a threaded loop makes
+/// afterwards, one per thread, turn the same first cell of each row.
+std::vector<dealii::DoFHandler<2>::active_cell_iterator>
+owned_cells_finding_rows(const dealii::DoFHandler<2> &dof_handler,
+                         std::optional<PolarCellValues> &polar);
 } // namespace sealfe
