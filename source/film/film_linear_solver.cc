@@ -47,6 +47,7 @@ FilmLinearSolver::Statistics &FilmLinearSolver::Statistics::operator+=(const Sta
   single_precision_factorizations += other.single_precision_factorizations;
   refinement_steps += other.refinement_steps;
   refinement_fallbacks += other.refinement_fallbacks;
+  nested_dissection_analyses += other.nested_dissection_analyses;
   return *this;
 }
 
@@ -185,9 +186,11 @@ void FilmLinearSolver::build_preconditioner()
     // KLU keeps its ordering while the matrix keeps its pattern (the Newton Jacobians of a
     // cavitation solve are assembled into one matrix).
     amg.reset();
-    const unsigned int before = direct.numeric_only(), retries_before = direct.workspace_retries();
+    const unsigned int before = direct.numeric_only(), retries_before = direct.workspace_retries(),
+                       ordered_before = direct.given_order_analyses();
     direct.factorize(*matrix);
     stats.symbolic_reuses += direct.numeric_only() - before;
+    stats.nested_dissection_analyses += direct.given_order_analyses() - ordered_before;
     stats.workspace_retries += direct.workspace_retries() - retries_before;
     stats.substructured_factorizations += direct.substructured();
     stats.single_precision_factorizations += direct.single_precision();

@@ -267,7 +267,8 @@ nlohmann::json linear_solver_summary(const FilmLinearSolver::Statistics &statist
           {"substructured_factorizations", statistics.substructured_factorizations},
           {"single_precision_factorizations", statistics.single_precision_factorizations},
           {"refinement_steps", statistics.refinement_steps},
-          {"refinement_fallbacks", statistics.refinement_fallbacks}};
+          {"refinement_fallbacks", statistics.refinement_fallbacks},
+          {"nested_dissection_analyses", statistics.nested_dissection_analyses}};
 }
 
 nlohmann::json finite_element_solve_summary(const FilmSettings &settings,

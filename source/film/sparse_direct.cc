@@ -239,8 +239,9 @@ public:
     id.icntl[17] = 0;
   }
 
-  /// The analysis (ordering, elimination tree) of A's pattern. Collective.
-  void analyse(const Epetra_CrsMatrix &A)
+  /// The analysis (ordering, elimination tree) of A's pattern. Collective. `order`: the
+  /// elimination position of every row (1-based; one rank), or null for MUMPS's AMD.
+  void analyse(const Epetra_CrsMatrix &A, const std::vector<int> *order = nullptr)
   {
     // this rank's entries as (row, column) 1-based global indices, in the order in which the
     // values are read at every factorisation
@@ -309,8 +310,16 @@ public:
       id.irn = row.data();
       id.jcn = column.data();
     }
+    // A given order (ICNTL(7) = 1): MUMPS reads PERM_IN at the analysis only
+    if (order && !several_ranks && order->size() == static_cast<std::size_t>(id.n))
+    {
+      id.perm_in = const_cast<int *>(order->data());
+      id.icntl[6] = 1;
+    }
     id.job = 1;
     MumpsArithmetic<Real>::call(id);
+    id.perm_in = nullptr;
+    id.icntl[6] = 0;
     // (MUMPS reads the rows and columns again at every factorisation: `row` and `column` live as
     // long as this instance)
     check("analysis");
@@ -692,6 +701,25 @@ void SparseDirect::clear()
   package = ""; // no factorisation: none to name (a later method may not factorise at all)
 }
 
+void SparseDirect::set_elimination_order(std::vector<int> position_of_row)
+{
+  std::vector<bool> taken(position_of_row.size(), false);
+  for (const int p : position_of_row)
+  {
+    if (p < 1 || static_cast<std::size_t>(p) > taken.size() || taken[p - 1])
+      throw std::logic_error("SparseDirect: the elimination order is not a permutation");
+    taken[p - 1] = true;
+  }
+  elimination_order = std::move(position_of_row);
+}
+
+const std::vector<int> *SparseDirect::order_for(const Epetra_CrsMatrix &A) const
+{
+  const bool applies = !elimination_order.empty() && A.Comm().NumProc() == 1 &&
+                       static_cast<long long>(elimination_order.size()) == A.NumGlobalRows64();
+  return applies ? &elimination_order : nullptr;
+}
+
 void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
@@ -733,7 +761,8 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
              A.NumGlobalRows64() >= single_precision_limit)
     {
       auto analysed = std::make_unique<Mumps<float>>(A);
-      analysed->analyse(A);
+      analysed->analyse(A, order_for(A));
+      given_order_count += order_for(A) != nullptr;
       single = std::move(analysed);
       package = "MUMPS, single precision refined";
     }
@@ -741,7 +770,8 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     {
       // kept only once analysed: a SparseDirect whose analysis failed holds no factorisation
       auto analysed = std::make_unique<Mumps<double>>(A);
-      analysed->analyse(A);
+      analysed->analyse(A, order_for(A));
+      given_order_count += order_for(A) != nullptr;
       mumps = std::move(analysed);
     }
     else
@@ -818,7 +848,8 @@ void SparseDirect::factorize_in_double(const Epetra_CrsMatrix &A)
   single.reset();
   package = "MUMPS";
   auto analysed = std::make_unique<Mumps<double>>(A);
-  analysed->analyse(A);
+  analysed->analyse(A, order_for(A));
+  given_order_count += order_for(A) != nullptr;
   mumps = std::move(analysed);
   mumps->factorize(A);
 }

@@ -62,6 +62,8 @@ public:
     unsigned int single_precision_factorizations = 0;
     unsigned int refinement_steps = 0;
     unsigned int refinement_fallbacks = 0;
+    // MUMPS analyses in the given elimination order (set_elimination_order), not MUMPS's AMD
+    unsigned int nested_dissection_analyses = 0;
 
     /// The work of several runs together: counts add, the largest Krylov count is the larger.
     Statistics &operator+=(const Statistics &other);
@@ -110,6 +112,13 @@ public:
     direct.share_with(team);
   }
   MPI_Comm direct_team() const { return direct.team_of_replicas(); }
+  /// The elimination order of the direct factorisations of this mesh's matrices
+  /// (SparseDirect::set_elimination_order: the nested dissection of the built-in annulus's
+  /// node grid); empty: MUMPS's AMD. Kept until replaced.
+  void set_elimination_order(std::vector<int> position_of_row)
+  {
+    direct.set_elimination_order(std::move(position_of_row));
+  }
   /// Forget the factorisation (new mesh).
   void clear();
   /// Free the factorisation (or AMG hierarchy) of the prepared matrix and keep the rest (the

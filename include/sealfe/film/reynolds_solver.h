@@ -349,6 +349,9 @@ private:
   /// solver count their work in it.
   mutable FilmLinearSolver linear_system_solver;
   std::vector<double> amg_support_x, amg_support_y; // owned dofs' support points (AMG)
+  /// The direct factorisations of this mesh have been given the nested dissection of its polar
+  /// node grid, or found that it has none (factorize(); reset by a new mesh).
+  bool elimination_order_tried = false;
   /// Geometric multigrid on the mesh levels (cg-gmg); its smoother (benchmarks change it).
   FilmMultigrid multigrid;
 

@@ -80,6 +80,14 @@ public:
   MPI_Comm team_of_replicas() const { return team; }
   /// Factorise `matrix` (kept by reference until the next factorize() or clear()).
   void factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix);
+  /// A fill-reducing elimination order for MUMPS's analyses on one rank of matrices of
+  /// position_of_row.size() rows (row i eliminated at position_of_row[i], 1-based; a
+  /// permutation, checked), instead of MUMPS's AMD: the nested dissection of the built-in
+  /// annulus's node grid (ReynoldsSolver::factorize). Kept across clear() until replaced; empty:
+  /// AMD again. Any permutation gives the same solution to round-off; only the fill differs.
+  void set_elimination_order(std::vector<int> position_of_row);
+  /// MUMPS analyses that took the given elimination order, since this object was made.
+  unsigned int given_order_analyses() const { return given_order_count; }
   /// x = A^-1 b with the last factorisation.
   void solve(const dealii::TrilinosWrappers::MPI::Vector &b,
              dealii::TrilinosWrappers::MPI::Vector &x);
@@ -146,6 +154,11 @@ private:
   long long pattern_entries = -1;
   unsigned int reused_symbolic = 0, retried_workspace = 0;
   const char *package = "";
+  std::vector<int> elimination_order; // set_elimination_order
+  unsigned int given_order_count = 0;
+  /// The given elimination order where it applies to an analysis of `A` (one rank, its size),
+  /// else null (MUMPS orders).
+  const std::vector<int> *order_for(const Epetra_CrsMatrix &A) const;
 };
 
 /// Outcome of solve_column_update.
