@@ -482,6 +482,9 @@ TEST(CavitationFE, CoarseLevelsFreeTheirFactorisationsAndRunAgainAlike)
     EXPECT_STREQ(level->linear_solver_statistics().direct_package(), "");
   }
   EXPECT_STRNE(solver.linear_solver_statistics().direct_package(), ""); // the finest keeps its own
+  // the finest level (MUMPS) analysed in the nested dissection of its node grid
+  // (polar_node_grid.h), the coarse levels' MUMPS sizes too (8 320 dofs and less: KLU)
+  EXPECT_GE(solver.linear_solver_statistics().statistics().nested_dissection_analyses, 1u);
   const FilmLoads second = converged_jfo(film, conditions, 64, 128, tolerance, solver);
   EXPECT_EQ(solver.coarse_level_solver(), coarse); // the coarse level (and its mesh) reused
   for (const ReynoldsSolver *level = coarse; level; level = level->coarse_level_solver())

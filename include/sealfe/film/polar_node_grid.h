@@ -13,10 +13,11 @@ namespace sealfe
 {
 /// The grid position (numerics::NodeGrid, rows radial and columns angular, a ring) of every dof
 /// of a degree-`degree` space on a polar tensor mesh, from the dofs' support points `support` (by
-/// dof index, all dofs on one rank): the radial rows are the support points sorted by radius in
-/// groups of equal size (the nodes on the ray theta = 0 count the rows), each row sorted by angle
-/// from theta = 0. False where the points are not such a grid (rows not apart in radius, a count
-/// that does not divide): a gmsh mesh, angles shifted from row to row, surface-aligned meshes.
+/// dof index, all dofs on one rank): the rows are the radii of the nodes on the ray theta = 0,
+/// the columns the angles of the nodes on the inner circle; every node must lie within a quarter
+/// of the spacings of a row's radius and a column's angle, each position taken once. False
+/// where the points are not such a grid: a gmsh mesh, angles shifted from row to row (spiral
+/// alignment), surface-aligned meshes whose columns are not the same in every row.
 bool polar_node_grid(const std::vector<dealii::Point<2>> &support, unsigned int degree,
                      numerics::NodeGrid &grid, std::vector<unsigned int> &position_of_dof);
 

@@ -23,7 +23,8 @@ struct NodeGrid
 /// no cell boundary splits, in row order. A ring is first cut at column 0. On an n x n grid of
 /// a 9-point stencil the factor has O(n^2 log n) entries and costs O(n^3) operations, against
 /// O(n^3) and O(n^4) for a band order (tests/validation/nested_dissection.cc); on the annulus's
-/// Jacobians it needs 24-37 % fewer operations than MUMPS's AMD (doc/performance.md, Session 38).
+/// Jacobians it needs 13-40 % fewer operations than MUMPS's AMD (doc/performance.md, Session
+/// 38).
 std::vector<unsigned int> nested_dissection_order(const NodeGrid &grid,
                                                   unsigned int leaf_nodes = 16);
 

@@ -1,0 +1,119 @@
+// The dofs of the built-in annulus as the nodes of its polar grid (polar_node_grid.h): on the
+// graded annulus (8 x 64 cells) of degree 1-3 every dof gets its own position on the
+// (k N_r + 1) x k N_theta grid, at its row's radius and at its column's angle, the same in
+// every row (the mapping of degree k on the polar manifold maps the cell's support points,
+// equally spaced for k <= 2 and Gauss-Lobatto points from k = 3, along the circles); every entry of
+// the finite-element matrix couples two nodes of one cell, so polar_nested_dissection gives a
+// permutation. Points that are not such a grid are refused: one row turned by half a column (angles
+// shifted from row to row), one node moved off its circle by a third of the radial spacing.
+#include "../graded_annulus.h"
+
+#include <sealfe/film/polar_node_grid.h>
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace sealfe;
+using namespace dealii;
+
+namespace
+{
+std::vector<Point<2>> support_points(const DoFHandler<2> &dof_handler, const Mapping<2> &mapping)
+{
+  const FiniteElement<2> &fe = dof_handler.get_fe();
+  std::vector<Point<2>> support(dof_handler.n_dofs());
+  FEValues<2> fe_values(mapping, fe, Quadrature<2>(fe.get_unit_support_points()),
+                        update_quadrature_points);
+  std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+  for (const auto &cell : dof_handler.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    cell->get_dof_indices(dofs);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      support[dofs[i]] = fe_values.quadrature_point(i);
+  }
+  return support;
+}
+} // namespace
+
+TEST(PolarNodeGrid, DofsOfTheAnnulusAreItsNodeGrid)
+{
+  for (const unsigned int degree : {1u, 2u, 3u})
+  {
+    test::GradedAnnulusDoFs dofs(MPI_COMM_SELF, degree);
+    const MappingQ<2> mapping(degree);
+    const std::vector<Point<2>> support = support_points(dofs.dof_handler, mapping);
+    numerics::NodeGrid grid;
+    std::vector<unsigned int> position;
+    ASSERT_TRUE(polar_node_grid(support, degree, grid, position)) << "degree " << degree;
+    EXPECT_EQ(grid.rows, degree * 8 + 1);
+    EXPECT_EQ(grid.columns, degree * 64);
+    EXPECT_TRUE(grid.periodic_columns);
+    std::vector<bool> taken(support.size(), false);
+    std::vector<std::size_t> column_node(grid.columns, support.size());
+    for (std::size_t dof = 0; dof < support.size(); ++dof)
+      if (position[dof] < grid.columns)
+        column_node[position[dof]] = dof;
+    for (const std::size_t dof : column_node)
+      ASSERT_LT(dof, support.size());
+    double worst_angle = 0;
+    for (std::size_t dof = 0; dof < support.size(); ++dof)
+    {
+      ASSERT_LT(position[dof], support.size());
+      EXPECT_FALSE(taken[position[dof]]);
+      taken[position[dof]] = true;
+      // the angle of the node of the same column on the inner circle (row 0)
+      const std::size_t inner = column_node[position[dof] % grid.columns];
+      const double angle = std::atan2(support[dof][1], support[dof][0]),
+                   expected = std::atan2(support[inner][1], support[inner][0]);
+      worst_angle = std::max(worst_angle, std::abs(std::remainder(angle - expected, 2 * M_PI)));
+    }
+    EXPECT_LT(worst_angle, 1e-12);
+
+    // the matrix of the cells' couplings: every entry inside one cell
+    DynamicSparsityPattern pattern(dofs.dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dofs.dof_handler, pattern);
+    TrilinosWrappers::SparseMatrix matrix;
+    matrix.reinit(complete_index_set(support.size()), complete_index_set(support.size()), pattern,
+                  MPI_COMM_SELF);
+    const std::vector<int> order = polar_nested_dissection(support, degree, matrix);
+    ASSERT_EQ(order.size(), support.size()) << "degree " << degree;
+    std::vector<bool> eliminated(order.size(), false);
+    for (const int p : order)
+    {
+      ASSERT_GE(p, 1);
+      ASSERT_LE(std::size_t(p), order.size());
+      EXPECT_FALSE(eliminated[p - 1]);
+      eliminated[p - 1] = true;
+    }
+
+    // one row turned by half a column: not a grid of equal angles
+    std::vector<Point<2>> turned = support;
+    const double half = M_PI / grid.columns, radius = support[0].norm();
+    for (Point<2> &x : turned)
+      if (std::abs(x.norm() - radius) < 1e-12 * radius)
+        x = Point<2>(std::cos(half) * x[0] - std::sin(half) * x[1],
+                     std::sin(half) * x[0] + std::cos(half) * x[1]);
+    EXPECT_FALSE(polar_node_grid(turned, degree, grid, position)) << "degree " << degree;
+    EXPECT_TRUE(polar_nested_dissection(turned, degree, matrix).empty());
+    // one node a third of the radial spacing off its circle (the dof at the largest angle
+    // below pi on the inner circle, away from the ray theta = 0)
+    std::vector<Point<2>> moved = support;
+    for (Point<2> &x : moved)
+      if (std::abs(x.norm() - test::GradedAnnulus::ri) < 1e-12 && x[1] > 0 && x[0] < 0)
+      {
+        const double gap = (test::GradedAnnulus::ro - test::GradedAnnulus::ri) / (8 * degree);
+        x *= (x.norm() + 0.34 * gap) / x.norm();
+        break;
+      }
+    EXPECT_FALSE(polar_node_grid(moved, degree, grid, position)) << "degree " << degree;
+  }
+}
