@@ -57,6 +57,8 @@ FilmLinearSolver::Statistics FilmLinearSolver::statistics() const
   // directly (factorization())
   Statistics counted = stats;
   counted.refinement_steps = direct.refinement_steps() - refinement_steps_before;
+  // (also the analyses of the solves' fallbacks to a whole or a double factorisation)
+  counted.nested_dissection_analyses = direct.given_order_analyses() - given_orders_before;
   counted.refinement_fallbacks = direct.refinement_fallbacks() - refinement_fallbacks_before;
   return counted;
 }
@@ -65,6 +67,7 @@ void FilmLinearSolver::reset_statistics()
 {
   stats = Statistics();
   refinement_steps_before = direct.refinement_steps();
+  given_orders_before = direct.given_order_analyses();
   refinement_fallbacks_before = direct.refinement_fallbacks();
 }
 
@@ -186,11 +189,9 @@ void FilmLinearSolver::build_preconditioner()
     // KLU keeps its ordering while the matrix keeps its pattern (the Newton Jacobians of a
     // cavitation solve are assembled into one matrix).
     amg.reset();
-    const unsigned int before = direct.numeric_only(), retries_before = direct.workspace_retries(),
-                       ordered_before = direct.given_order_analyses();
+    const unsigned int before = direct.numeric_only(), retries_before = direct.workspace_retries();
     direct.factorize(*matrix);
     stats.symbolic_reuses += direct.numeric_only() - before;
-    stats.nested_dissection_analyses += direct.given_order_analyses() - ordered_before;
     stats.workspace_retries += direct.workspace_retries() - retries_before;
     stats.substructured_factorizations += direct.substructured();
     stats.single_precision_factorizations += direct.single_precision();

@@ -42,15 +42,17 @@ bool polar_node_grid(const std::vector<Point<2>> &support, const unsigned int de
   for (std::size_t q = 0; q < n; ++q)
   {
     radius[q] = support[q].norm();
+    // (a node on the ray theta = 0, as counted above, at 0: not within round-off below 2 pi)
     const double t = std::atan2(support[q][1], support[q][0]);
-    angle[q] = t < 0 ? t + 2 * M_PI : t;
+    const bool on_ray = support[q][0] > 0 && std::abs(support[q][1]) <= 1e-12 * support[q][0];
+    angle[q] = on_ray ? 0.0 : (t < 0 ? t + 2 * M_PI : t);
     if (std::abs(radius[q] - row_radius[0]) <= 0.25 * gap)
       column_angle.push_back(angle[q]);
   }
   if (column_angle.size() != columns)
     return false;
   std::sort(column_angle.begin(), column_angle.end());
-  // (the node on the ray at 0, or within round-off below 2 pi: the first column)
+  // (the node on the ray at 0: the first column)
   double spacing = 2 * M_PI - column_angle.back() + column_angle.front();
   for (std::size_t j = 1; j < columns; ++j)
     spacing = std::min(spacing, column_angle[j] - column_angle[j - 1]);

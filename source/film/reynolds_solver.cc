@@ -462,8 +462,9 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
     }
   }
   // The direct factorisations on the built-in annulus (one rank, MUMPS's sizes) in the nested
-  // dissection of its node grid instead of MUMPS's AMD: 24-37 % fewer operations on the JFO
-  // Jacobians of the tilted seal, 2.6e5-1.05e6 dofs, and the finest factorisation 3.5 -> 3.0 s
+  // dissection of its node grid instead of MUMPS's AMD: 24-27 % fewer operations on the JFO
+  // Jacobians of the tilted seal at 2.6e5-1.05e6 dofs (37 % at 6.6e4), 13-40 % on the wavy
+  // example's, and the tilted seal's finest factorisation 3.5-4.2 -> 3.0-3.1 s
   // (doc/performance.md, Session 38). Made once per mesh, from the support points.
   if (method == FilmLinearSolver::Method::direct && !elimination_order_tried &&
       dof_handler.n_dofs() >= SparseDirect::multifrontal_limit &&

@@ -201,7 +201,8 @@ double refine(double *x, const std::size_t n, Residual &&residual, Correction &&
 /// 21"). Here each rank reads its own rows of the Trilinos matrix: the row and column indices
 /// once per pattern, the values straight from the matrix's storage at every factorisation; on
 /// several ranks both are gathered on the host (MPI_Gatherv), in the same order. The MUMPS
-/// settings are those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0), automatic
+/// settings are those Amesos made: MUMPS's defaults with AMD ordering (ICNTL(7) = 0; or a given
+/// order, ICNTL(7) = 1, SparseDirect::set_elimination_order), automatic
 /// column permutation and scaling (ICNTL(6) = ICNTL(8) = 7), 20 % workspace margin (ICNTL(14),
 /// SparseDirect::initial_workspace_margin). `Real` float: the factors in single precision, one
 /// rank only (SparseDirect::single_precision_limit), the solves those of the single factors
@@ -238,6 +239,9 @@ public:
     // the matrix on the host (ICNTL(18) = 0), also on several ranks (analyse, factorize)
     id.icntl[17] = 0;
   }
+
+  /// MUMPS's estimate of the elimination's operations from the last analysis (RINFOG(1)).
+  double estimated_operations() const { return id.rinfog[0]; }
 
   /// The analysis (ordering, elimination tree) of A's pattern. Collective. `order`: the
   /// elimination position of every row (1-based; one rank), or null for MUMPS's AMD.
@@ -763,6 +767,7 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
       auto analysed = std::make_unique<Mumps<float>>(A);
       analysed->analyse(A, order_for(A));
       given_order_count += order_for(A) != nullptr;
+      analysed_operations = analysed->estimated_operations();
       single = std::move(analysed);
       package = "MUMPS, single precision refined";
     }
@@ -772,6 +777,7 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
       auto analysed = std::make_unique<Mumps<double>>(A);
       analysed->analyse(A, order_for(A));
       given_order_count += order_for(A) != nullptr;
+      analysed_operations = analysed->estimated_operations();
       mumps = std::move(analysed);
     }
     else
@@ -850,6 +856,7 @@ void SparseDirect::factorize_in_double(const Epetra_CrsMatrix &A)
   auto analysed = std::make_unique<Mumps<double>>(A);
   analysed->analyse(A, order_for(A));
   given_order_count += order_for(A) != nullptr;
+  analysed_operations = analysed->estimated_operations();
   mumps = std::move(analysed);
   mumps->factorize(A);
 }

@@ -1,11 +1,12 @@
 // The dofs of the built-in annulus as the nodes of its polar grid (polar_node_grid.h): on the
 // graded annulus (8 x 64 cells) of degree 1-3 every dof gets its own position on the
-// (k N_r + 1) x k N_theta grid, at its row's radius and at its column's angle, the same in
-// every row (the mapping of degree k on the polar manifold maps the cell's support points,
-// equally spaced for k <= 2 and Gauss-Lobatto points from k = 3, along the circles); every entry of
-// the finite-element matrix couples two nodes of one cell, so polar_nested_dissection gives a
-// permutation. Points that are not such a grid are refused: one row turned by half a column (angles
-// shifted from row to row), one node moved off its circle by a third of the radial spacing.
+// (k N_r + 1) x k N_theta grid, at its row's radius and at its column's angle, the same in every
+// row (the mapping of degree k on the polar manifold maps the cell's support points, equally
+// spaced for k <= 2 and Gauss-Lobatto points from k = 3, along the circles); every entry of the
+// finite-element matrix couples two nodes of one cell, so polar_nested_dissection gives a
+// permutation. Points that are not such a grid are refused: a node turned by 0.3 of a column, a
+// node moved 0.3 of the way to the next row; so is a matrix with an entry between two nodes that
+// no cell holds.
 #include "../graded_annulus.h"
 
 #include <sealfe/film/polar_node_grid.h>
@@ -18,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -95,25 +97,47 @@ TEST(PolarNodeGrid, DofsOfTheAnnulusAreItsNodeGrid)
       eliminated[p - 1] = true;
     }
 
-    // one row turned by half a column: not a grid of equal angles
-    std::vector<Point<2>> turned = support;
-    const double half = M_PI / grid.columns, radius = support[0].norm();
-    for (Point<2> &x : turned)
-      if (std::abs(x.norm() - radius) < 1e-12 * radius)
-        x = Point<2>(std::cos(half) * x[0] - std::sin(half) * x[1],
-                     std::sin(half) * x[0] + std::cos(half) * x[1]);
-    EXPECT_FALSE(polar_node_grid(turned, degree, grid, position)) << "degree " << degree;
+    // Points that are not the grid, each refused by the quarter-spacing checks (the counts of
+    // rows and columns kept): a node of a middle row turned by 0.3 of its column's spacing, or
+    // moved 0.3 of the way to the next row (the local spacing is at least the smallest, whose
+    // quarter is the bound)
+    const unsigned int middle = grid.rows / 2, column = grid.columns / 3;
+    const auto node_at = [&](const unsigned int i, const unsigned int j)
+    {
+      for (std::size_t dof = 0; dof < position.size(); ++dof)
+        if (position[dof] == i * grid.columns + j)
+          return dof;
+      return position.size();
+    };
+    const std::size_t dof = node_at(middle, column), next_column = node_at(middle, column + 1),
+                      next_row = node_at(middle + 1, column);
+    ASSERT_LT(std::max({dof, next_column, next_row}), support.size());
+    const double dtheta = std::atan2(support[next_column][1], support[next_column][0]) -
+                          std::atan2(support[dof][1], support[dof][0]),
+                 dr = support[next_row].norm() - support[dof].norm();
+    ASSERT_GT(dtheta, 0);
+    ASSERT_GT(dr, 0);
+    std::vector<Point<2>> turned = support, moved = support;
+    const double c = std::cos(0.3 * dtheta), s = std::sin(0.3 * dtheta);
+    turned[dof] = Point<2>(c * support[dof][0] - s * support[dof][1],
+                           s * support[dof][0] + c * support[dof][1]);
+    moved[dof] *= (support[dof].norm() + 0.3 * dr) / support[dof].norm();
+    numerics::NodeGrid refused;
+    std::vector<unsigned int> refused_position;
+    EXPECT_FALSE(polar_node_grid(turned, degree, refused, refused_position)) << "degree " << degree;
     EXPECT_TRUE(polar_nested_dissection(turned, degree, matrix).empty());
-    // one node a third of the radial spacing off its circle (the dof at the largest angle
-    // below pi on the inner circle, away from the ray theta = 0)
-    std::vector<Point<2>> moved = support;
-    for (Point<2> &x : moved)
-      if (std::abs(x.norm() - test::GradedAnnulus::ri) < 1e-12 && x[1] > 0 && x[0] < 0)
-      {
-        const double gap = (test::GradedAnnulus::ro - test::GradedAnnulus::ri) / (8 * degree);
-        x *= (x.norm() + 0.34 * gap) / x.norm();
-        break;
-      }
-    EXPECT_FALSE(polar_node_grid(moved, degree, grid, position)) << "degree " << degree;
+    EXPECT_FALSE(polar_node_grid(moved, degree, refused, refused_position)) << "degree " << degree;
+
+    // A matrix entry between two nodes that no cell holds (a middle node and the node half a
+    // turn away): the separators would not separate, so no order is given
+    DynamicSparsityPattern coupled(dofs.dof_handler.n_dofs()); // (a copy must be empty)
+    DoFTools::make_sparsity_pattern(dofs.dof_handler, coupled);
+    const std::size_t opposite = node_at(middle, (column + grid.columns / 2) % grid.columns);
+    ASSERT_LT(opposite, support.size());
+    coupled.add(dof, opposite);
+    TrilinosWrappers::SparseMatrix coupled_matrix;
+    coupled_matrix.reinit(complete_index_set(support.size()), complete_index_set(support.size()),
+                          coupled, MPI_COMM_SELF);
+    EXPECT_TRUE(polar_nested_dissection(support, degree, coupled_matrix).empty());
   }
 }

@@ -161,6 +161,7 @@ private:
   std::function<void()> prepare_multigrid;
   Statistics stats;
   unsigned int refinement_steps_before = 0, refinement_fallbacks_before = 0; // direct's, at reset
+  unsigned int given_orders_before = 0;                                      // direct's, at reset
 };
 
 } // namespace sealfe
