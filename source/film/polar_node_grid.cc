@@ -19,9 +19,10 @@ bool polar_node_grid(const std::vector<Point<2>> &support, const unsigned int de
     return false;
   // The rows: the radii of the nodes on the ray theta = 0 (the angle of the mesh's column 0),
   // one node per row there
+  auto on_ray = [](const Point<2> &x) { return x[0] > 0 && std::abs(x[1]) <= 1e-12 * x[0]; };
   std::vector<double> row_radius;
   for (const Point<2> &x : support)
-    if (x[0] > 0 && std::abs(x[1]) <= 1e-12 * x[0])
+    if (on_ray(x))
       row_radius.push_back(x[0]);
   const std::size_t rows = row_radius.size();
   if (rows < 2 || n % rows != 0)
@@ -44,8 +45,7 @@ bool polar_node_grid(const std::vector<Point<2>> &support, const unsigned int de
     radius[q] = support[q].norm();
     // (a node on the ray theta = 0, as counted above, at 0: not within round-off below 2 pi)
     const double t = std::atan2(support[q][1], support[q][0]);
-    const bool on_ray = support[q][0] > 0 && std::abs(support[q][1]) <= 1e-12 * support[q][0];
-    angle[q] = on_ray ? 0.0 : (t < 0 ? t + 2 * M_PI : t);
+    angle[q] = on_ray(support[q]) ? 0.0 : (t < 0 ? t + 2 * M_PI : t);
     if (std::abs(radius[q] - row_radius[0]) <= 0.25 * gap)
       column_angle.push_back(angle[q]);
   }
@@ -101,22 +101,14 @@ std::vector<int> polar_nested_dissection(const std::vector<Point<2>> &support,
   if (A.Comm().NumProc() != 1 || static_cast<std::size_t>(A.NumMyRows()) != support.size() ||
       !polar_node_grid(support, degree, grid, position))
     return {};
-  // Every entry within one cell of the grid (rows and columns are dofs on one rank): both
-  // coordinates within one interval between cell boundaries (numerics::within_one_cell, here
-  // on the rows' and columns' indices held apart: 2.6e7 entries at 1.05e6 Q2 dofs)
+  // Every entry within one cell of the grid (rows and columns are dofs on one rank), with the
+  // rows' and columns' indices held apart (2.6e7 entries at 1.05e6 Q2 dofs)
   std::vector<unsigned int> row_of(position.size()), column_of(position.size());
   for (std::size_t dof = 0; dof < position.size(); ++dof)
   {
     row_of[dof] = position[dof] / grid.columns;
     column_of[dof] = position[dof] % grid.columns;
   }
-  const long stride = grid.stride, columns = grid.columns;
-  auto one_interval = [stride](long lo, long hi)
-  {
-    if (lo > hi)
-      std::swap(lo, hi);
-    return hi - lo <= stride && (lo / stride + 1) * stride >= hi;
-  };
   std::vector<long> column_gid(A.NumMyCols());
   for (int c = 0; c < A.NumMyCols(); ++c)
     column_gid[c] = A.ColMap().GID64(c);
@@ -135,11 +127,7 @@ std::vector<int> polar_nested_dissection(const std::vector<Point<2>> &support,
       const long column = column_gid[local_columns[k]];
       if (column < 0 || column >= long(position.size()))
         return {};
-      const long ib = row_of[column], jb = column_of[column];
-      const bool across_zero = std::abs(ja - jb) > columns / 2;
-      if (!one_interval(ia, ib) ||
-          !(across_zero ? one_interval(std::max(ja, jb), std::min(ja, jb) + columns)
-                        : one_interval(ja, jb)))
+      if (!numerics::within_one_cell(grid, ia, ja, row_of[column], column_of[column]))
         return {};
     }
   }

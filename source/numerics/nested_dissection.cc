@@ -94,20 +94,7 @@ std::vector<unsigned int> nested_dissection_order(const NodeGrid &grid,
 
 bool within_one_cell(const NodeGrid &grid, const unsigned int a, const unsigned int b)
 {
-  // no cell boundary strictly between the two coordinates, and at most one cell apart
-  auto one_interval = [&](long lo, long hi)
-  {
-    if (lo > hi)
-      std::swap(lo, hi);
-    return hi - lo <= long(grid.stride) && (lo / grid.stride + 1) * long(grid.stride) >= hi;
-  };
-  const long ia = a / grid.columns, ib = b / grid.columns, ja = a % grid.columns,
-             jb = b % grid.columns;
-  if (!one_interval(ia, ib))
-    return false;
-  if (grid.periodic_columns && std::abs(ja - jb) > long(grid.columns) / 2)
-    // across column 0 of the ring: the smaller one a turn further
-    return one_interval(std::max(ja, jb), std::min(ja, jb) + long(grid.columns));
-  return one_interval(ja, jb);
+  return within_one_cell(grid, a / grid.columns, a % grid.columns, b / grid.columns,
+                         b % grid.columns);
 }
 } // namespace sealfe::numerics

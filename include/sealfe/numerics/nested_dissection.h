@@ -2,6 +2,9 @@
 // factorisations of finite-element matrices on a tensor-product mesh (the built-in annulus).
 #pragma once
 
+#include <algorithm>
+#include <cstdlib>
+#include <utility>
 #include <vector>
 
 namespace sealfe::numerics
@@ -32,4 +35,25 @@ std::vector<unsigned int> nested_dissection_order(const NodeGrid &grid,
 /// between cell boundaries): what every entry of the matrix must satisfy for the separators of
 /// nested_dissection_order to separate.
 bool within_one_cell(const NodeGrid &grid, unsigned int a, unsigned int b);
+
+/// within_one_cell of the nodes (row_a, column_a) and (row_b, column_b): for callers that hold
+/// the coordinates (polar_nested_dissection checks every entry of a matrix with it), inline.
+inline bool within_one_cell(const NodeGrid &grid, const long row_a, const long column_a,
+                            const long row_b, const long column_b)
+{
+  // no cell boundary strictly between the two coordinates, and at most one cell apart
+  const long stride = grid.stride, columns = grid.columns;
+  auto one_interval = [stride](long lo, long hi)
+  {
+    if (lo > hi)
+      std::swap(lo, hi);
+    return hi - lo <= stride && (lo / stride + 1) * stride >= hi;
+  };
+  if (!one_interval(row_a, row_b))
+    return false;
+  if (grid.periodic_columns && std::abs(column_a - column_b) > columns / 2)
+    // across column 0 of the ring: the smaller one a turn further
+    return one_interval(std::max(column_a, column_b), std::min(column_a, column_b) + columns);
+  return one_interval(column_a, column_b);
+}
 } // namespace sealfe::numerics
