@@ -724,6 +724,18 @@ const std::vector<int> *SparseDirect::order_for(const Epetra_CrsMatrix &A) const
   return applies ? &elimination_order : nullptr;
 }
 
+template <class Real>
+std::unique_ptr<SparseDirect::Mumps<Real>>
+SparseDirect::analysed_by_mumps(const Epetra_CrsMatrix &A)
+{
+  auto analysed = std::make_unique<Mumps<Real>>(A);
+  const std::vector<int> *order = order_for(A);
+  analysed->analyse(A, order);
+  given_order_count += order != nullptr;
+  analysed_operations = analysed->estimated_operations();
+  return analysed;
+}
+
 void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix)
 {
   const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
@@ -764,21 +776,13 @@ void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matri
     else if (package == std::string("MUMPS") && A.Comm().NumProc() == 1 &&
              A.NumGlobalRows64() >= single_precision_limit)
     {
-      auto analysed = std::make_unique<Mumps<float>>(A);
-      analysed->analyse(A, order_for(A));
-      given_order_count += order_for(A) != nullptr;
-      analysed_operations = analysed->estimated_operations();
-      single = std::move(analysed);
+      single = analysed_by_mumps<float>(A);
       package = "MUMPS, single precision refined";
     }
     else if (package == std::string("MUMPS"))
     {
       // kept only once analysed: a SparseDirect whose analysis failed holds no factorisation
-      auto analysed = std::make_unique<Mumps<double>>(A);
-      analysed->analyse(A, order_for(A));
-      given_order_count += order_for(A) != nullptr;
-      analysed_operations = analysed->estimated_operations();
-      mumps = std::move(analysed);
+      mumps = analysed_by_mumps<double>(A);
     }
     else
     {
@@ -853,11 +857,7 @@ void SparseDirect::factorize_in_double(const Epetra_CrsMatrix &A)
   }
   single.reset();
   package = "MUMPS";
-  auto analysed = std::make_unique<Mumps<double>>(A);
-  analysed->analyse(A, order_for(A));
-  given_order_count += order_for(A) != nullptr;
-  analysed_operations = analysed->estimated_operations();
-  mumps = std::move(analysed);
+  mumps = analysed_by_mumps<double>(A);
   mumps->factorize(A);
 }
 

@@ -166,6 +166,10 @@ private:
   /// The given elimination order where it applies to an analysis of `A` (one rank, its size),
   /// else null (MUMPS orders).
   const std::vector<int> *order_for(const Epetra_CrsMatrix &A) const;
+  /// MUMPS in precision `Real` with A's pattern analysed (in the given order where it applies),
+  /// the analysis counted and its estimated operations kept.
+  template <class Real>
+  std::unique_ptr<Mumps<Real>> analysed_by_mumps(const Epetra_CrsMatrix &A);
 };
 
 /// Outcome of solve_column_update.
