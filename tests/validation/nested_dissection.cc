@@ -143,11 +143,13 @@ TEST(NestedDissection, BilinearMeshFollowsGeorgesLeadingTerms)
   const auto lg = [](const double n) { return std::log2(n); };
   // George's expansions with the next term of each: entries = a n^2 log2 n + b n^2 + c n log2 n
   // (the separators' borders) and multiplications = a n^3 + b n^2 log2 n + c n^2, fitted exactly
-  // to three sizes; the terms left out are an order n smaller than the last one kept (O(n)
-  // entries, O(n log n) multiplications), so the fitted a approaches George's 31/4 and 829/84
-  // as 1/n: within 1 % from n = 63 on, where the left-out terms are below a percent of the
-  // entries and of the multiplications (16 nodes a leaf instead of George's single nodes only
-  // changes b: a leaf of the same shape at every size is O(n^2) entries, O(n^2) operations).
+  // to three sizes. The terms left out (O(n) entries, a factor log2 n below the last one kept;
+  // O(n log2 n) multiplications, a factor n / log2 n below it) move the fitted a by their size
+  // relative to a's term, n log2 n times smaller for the entries (0.05 % at n = 255) and more for
+  // the multiplications, magnified by the fit's differences over the sizes' log2 spacing of 1
+  // (about the fitted b and c over a, 3): under 1 % from n = 63 on, and less on larger sizes (16
+  // nodes a leaf instead of George's single nodes only changes b: a leaf of the same shape at
+  // every size is O(n^2) entries and O(n^2) operations).
   std::array<double, 2> entries_lead{}, multiplications_lead{};
   for (int t = 0; t < 2; ++t)
   {
