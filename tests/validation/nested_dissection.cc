@@ -7,9 +7,9 @@
 // n = 2^p - 1 the dissection halves exactly, as in George's, so counts at n = 31 ... 255 fitted
 // with the next terms of the expansions give George's leading coefficients, the two-term fits
 // miss them by what an n log2 n remainder predicts, and the band order's cost grows with order
-// 4. A ring
-// (periodic columns) and cells of degree 2 and 3 give permutations whose separators separate:
-// the factor of the ring's pattern has no entry that the dissection should have kept apart.
+// 4. A ring (periodic columns) and cells of degree 2 and 3 give permutations whose separators
+// separate: the factor of the ring's pattern has no entry that the dissection should have kept
+// apart.
 #include <sealfe/numerics/nested_dissection.h>
 
 #include <gtest/gtest.h>
@@ -102,7 +102,6 @@ bool is_permutation(const std::vector<unsigned int> &order, const std::size_t N)
   }
   return order.size() == N;
 }
-} // namespace
 
 /// x solving the 3 x 3 system M x = y (Gaussian elimination with partial pivoting)
 std::array<double, 3> solve3(std::array<std::array<double, 4>, 3> M)
@@ -122,13 +121,14 @@ std::array<double, 3> solve3(std::array<std::array<double, 4>, 3> M)
           M[r][c] -= f * M[i][c];
       }
   }
-  return {M[0][3] / M[0][0], M[1][3] / M[1][1], M[2][3] / M[2][2]};
+  return {{M[0][3] / M[0][0], M[1][3] / M[1][1], M[2][3] / M[2][2]}};
 }
+} // namespace
 
 TEST(NestedDissection, BilinearMeshFollowsGeorgesLeadingTerms)
 {
   // n = 2^p - 1 nodes a side, so that every region halves exactly as in George's dissection
-  const std::array<unsigned int, 4> sizes = {31, 63, 127, 255};
+  const std::array<unsigned int, 4> sizes = {{31, 63, 127, 255}};
   std::array<Fill, 4> fill;
   for (std::size_t s = 0; s < sizes.size(); ++s)
   {
@@ -157,8 +157,8 @@ TEST(NestedDissection, BilinearMeshFollowsGeorgesLeadingTerms)
     for (int i = 0; i < 3; ++i)
     {
       const double n = sizes[t + i];
-      E[i] = {lg(n), 1.0, lg(n) / n, fill[t + i].entries / (n * n)};
-      M[i] = {1.0, lg(n) / n, 1.0 / n, fill[t + i].multiplications / (n * n * n)};
+      E[i] = {{lg(n), 1.0, lg(n) / n, fill[t + i].entries / (n * n)}};
+      M[i] = {{1.0, lg(n) / n, 1.0 / n, fill[t + i].multiplications / (n * n * n)}};
     }
     entries_lead[t] = solve3(E)[0];
     multiplications_lead[t] = solve3(M)[0];
@@ -228,9 +228,11 @@ TEST(NestedDissection, RingsOfHigherDegreeCellsArePermutedAndSeparated)
     // of a ring must stay well below the band order's (a ring's band order wraps: its factor
     // holds the first columns in every row, order n^2 columns x rows).
     if (N > 1000)
+    {
       EXPECT_LT(symbolic_cholesky(grid, order).entries,
                 0.5 * symbolic_cholesky(grid, row_order(grid)).entries)
           << grid.rows << " x " << grid.columns;
+    }
   }
   // positions of one cell, and not: stride 2, ring of 8 columns
   const NodeGrid ring{5, 8, 2, true};
