@@ -732,8 +732,12 @@ SparseDirect::analysed_by_mumps(const Epetra_CrsMatrix &A)
   const std::vector<int> *order = order_for(A);
   analysed->analyse(A, order);
   given_order_count += order != nullptr;
-  analysed_operations = analysed->estimated_operations();
   return analysed;
+}
+
+double SparseDirect::estimated_operations() const
+{
+  return mumps ? mumps->estimated_operations() : single ? single->estimated_operations() : 0.0;
 }
 
 void SparseDirect::factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix)

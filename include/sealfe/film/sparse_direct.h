@@ -91,9 +91,10 @@ public:
   void set_elimination_order(std::vector<int> position_of_row);
   /// MUMPS analyses that took the given elimination order, since this object was made.
   unsigned int given_order_analyses() const { return given_order_count; }
-  /// MUMPS's estimate of the operations of the elimination (RINFOG(1)) at its last analysis on
-  /// this object (0 before any).
-  double estimated_operations() const { return analysed_operations; }
+  /// MUMPS's estimate of the operations of the elimination (RINFOG(1)) from the analysis behind
+  /// the current factorisation (0 where MUMPS factorises no whole matrix: before any, KLU, a
+  /// factorisation shared over a separator).
+  double estimated_operations() const;
   /// x = A^-1 b with the last factorisation.
   void solve(const dealii::TrilinosWrappers::MPI::Vector &b,
              dealii::TrilinosWrappers::MPI::Vector &x);
@@ -162,12 +163,11 @@ private:
   const char *package = "";
   std::vector<int> elimination_order; // set_elimination_order
   unsigned int given_order_count = 0;
-  double analysed_operations = 0;
   /// The given elimination order where it applies to an analysis of `A` (one rank, its size),
   /// else null (MUMPS orders).
   const std::vector<int> *order_for(const Epetra_CrsMatrix &A) const;
   /// MUMPS in precision `Real` with A's pattern analysed (in the given order where it applies),
-  /// the analysis counted and its estimated operations kept.
+  /// the analysis counted.
   template <class Real>
   std::unique_ptr<Mumps<Real>> analysed_by_mumps(const Epetra_CrsMatrix &A);
 };
