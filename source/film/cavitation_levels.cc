@@ -2,6 +2,7 @@
 // every cell, and the start from the converged state of the mesh twice as coarse.
 #include <sealfe/film/nested_transfer.h>
 #include <sealfe/film/polar_cell_values.h>
+#include <sealfe/film/polar_node_grid.h>
 #include <sealfe/film/reynolds_solver.h>
 #include <sealfe/numerics/ordered_batches.h>
 
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -153,6 +155,29 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
   // failure inside them on every rank (numerics::SubstructuredLU); a failure on one rank outside
   // them (an allocation in its assembly, say) still leaves the others waiting in their next
   // shared factorisation: not handled.
+  // This level's nested dissection (for the direct factorisations of its Jacobians, factorize())
+  // and its owned dofs' support points (for the start below) are made on a thread of their own
+  // while the coarse levels run: those touch nothing of this level, whose mesh, dofs and matrix
+  // pattern are fixed since setup_system, and their MUMPS factorisations run on one core. The
+  // thread only reads, and makes no MPI call (one rank). Tilted seal, JFO at 1.05e6 dofs: the
+  // order's 0.18-0.24 s off the run's wall time (doc/performance.md "Session 40").
+  struct MadeAhead
+  {
+    std::vector<Point<2>> support;
+    std::vector<int> order;
+  };
+  std::future<MadeAhead> ahead;
+  if (wants_nested_dissection(
+          FilmLinearSolver::choose(linear_solver, false, dof_handler.n_dofs(), false, n_ranks)))
+    ahead = std::async(std::launch::async,
+                       [this]()
+                       {
+                         MadeAhead made;
+                         made.support = owned_support_points();
+                         made.order = polar_nested_dissection(made.support, polynomial_degree,
+                                                              system_matrix);
+                         return made;
+                       });
   std::string failure;
   try
   {
@@ -161,6 +186,16 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
   catch (std::exception &e)
   {
     failure = e.what();
+  }
+  std::vector<Point<2>> support;
+  if (ahead.valid())
+  {
+    // (the stage's time is the wait for the thread: what the order costs the run)
+    TimerOutput::Scope order_timer(timer, "nested dissection order");
+    MadeAhead made = ahead.get();
+    linear_system_solver.set_elimination_order(std::move(made.order));
+    elimination_order_tried = true;
+    support = std::move(made.support);
   }
   // The coarse level's solution is all this level takes from it: its factorisation (with those
   // of the levels below it, which it freed in turn) goes before this level factorises. Tilted
@@ -182,7 +217,8 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
   // the owned dofs' support points by owned index (owned_support_points: a std::map's 1.3e5
   // insertions were a quarter of the coarse start's time at 1.3e5 dofs)
   const unsigned int n_owned = locally_owned_dofs.n_elements();
-  const std::vector<Point<2>> support = owned_support_points();
+  if (support.empty())
+    support = owned_support_points();
   std::vector<Point<2>> points;
   std::vector<types::global_dof_index> indices;
   std::vector<unsigned int> owned_index; // of each point

@@ -466,10 +466,9 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
   // Jacobians of the tilted seal at 2.6e5-1.05e6 dofs (37 % at 6.6e4), 13-40 % on the wavy
   // example's, and the tilted seal's finest factorisation 3.5-4.2 -> 3.0-3.1 s
   // (doc/performance.md, Session 38). Made once per mesh, from the support points.
-  if (method == FilmLinearSolver::Method::direct && !elimination_order_tried &&
-      dof_handler.n_dofs() >= SparseDirect::multifrontal_limit &&
-      Utilities::MPI::n_mpi_processes(mpi_communicator) == 1 && settings.mesh.mesh_file.empty() &&
-      !(settings.mesh.mesh_size > 0))
+  // (The cavitation models' levels that start from a coarser one have it made while the coarse
+  // levels run, coarse_level_state.)
+  if (wants_nested_dissection(method))
   {
     elimination_order_tried = true;
     TimerOutput::Scope order_timer(timer, "nested dissection order");
@@ -479,6 +478,14 @@ void ReynoldsSolver::factorize(const bool symmetric, const bool newton_sequence,
   linear_system_solver.prepare(system_matrix, symmetric, linear_solver, polynomial_degree,
                                solver_tolerance, amg_support_x, amg_support_y, newton_sequence,
                                deferred);
+}
+
+bool ReynoldsSolver::wants_nested_dissection(const FilmLinearSolver::Method method) const
+{
+  return method == FilmLinearSolver::Method::direct && !elimination_order_tried &&
+         dof_handler.n_dofs() >= SparseDirect::multifrontal_limit &&
+         Utilities::MPI::n_mpi_processes(mpi_communicator) == 1 &&
+         settings.mesh.mesh_file.empty() && !(settings.mesh.mesh_size > 0);
 }
 
 unsigned int ReynoldsSolver::solve_linear_system(const TrilinosWrappers::MPI::Vector &rhs,

@@ -350,8 +350,13 @@ private:
   mutable FilmLinearSolver linear_system_solver;
   std::vector<double> amg_support_x, amg_support_y; // owned dofs' support points (AMG)
   /// The direct factorisations of this mesh have been given the nested dissection of its polar
-  /// node grid, or found that it has none (factorize(); reset by a new mesh).
+  /// node grid, or found that it has none (factorize(), or coarse_level_state while the coarse
+  /// levels run; reset by a new mesh).
   bool elimination_order_tried = false;
+  /// Whether factorisations by `method` of this mesh's matrices want the nested dissection of
+  /// its polar node grid and do not have it yet: direct, MUMPS's sizes, one rank, the built-in
+  /// mesh.
+  bool wants_nested_dissection(FilmLinearSolver::Method method) const;
   /// Geometric multigrid on the mesh levels (cg-gmg); its smoother (benchmarks change it).
   FilmMultigrid multigrid;
 
