@@ -106,17 +106,8 @@ void ReynoldsSolver::for_each_cell_film_matrices(const bool with_void,
   numerics::compute_in_batches_add_in_order(cells.size(), batch_size, batches, 32, compute, add);
 }
 
-bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
-                                        std::vector<double> &void_at_dofs)
+void ReynoldsSolver::solve_coarse_level(std::vector<Point<2>> *support)
 {
-  // The cavity boundary moves by about one cell per Newton (JFO) or active-set (Reynolds)
-  // iteration, so the iteration counts of a start from the full film grow with the mesh
-  // (JFOSolver::warm_start). On textured faces the sequencing stops at the coarsest level that
-  // still resolves the dimples, and never regenerates a gmsh mesh (AnnulusMesh::sequences_jfo).
-  const unsigned int next = current_coarsening + 1;
-  if (dof_handler.n_dofs() <= 200 || !mesh_parameters.can_coarsen(next) ||
-      !mesh_parameters.sequences_jfo(next, film.inner_radius, film.outer_radius))
-    return false;
   // The coarse level solves the same physics: a copy of the whole settings (flow factors and
   // contact included) and the same test hooks. Kept in the solver, so that its mesh is reused.
   // Several ranks on the built-in mesh: every rank solves the coarse levels whole by itself
@@ -167,8 +158,8 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
     std::vector<int> order;
   };
   std::future<MadeAhead> ahead;
-  if (wants_nested_dissection(
-          FilmLinearSolver::choose(linear_solver, false, dof_handler.n_dofs(), false, n_ranks)))
+  if (support && wants_nested_dissection(FilmLinearSolver::choose(
+                     linear_solver, false, dof_handler.n_dofs(), false, n_ranks)))
     ahead = std::async(std::launch::async,
                        [this]()
                        {
@@ -187,7 +178,6 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
   {
     failure = e.what();
   }
-  std::vector<Point<2>> support;
   if (ahead.valid())
   {
     // (the stage's time is the wait for the thread: what the order costs the run)
@@ -195,7 +185,7 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
     MadeAhead made = ahead.get();
     linear_system_solver.set_elimination_order(std::move(made.order));
     elimination_order_tried = true;
-    support = std::move(made.support);
+    *support = std::move(made.support);
   }
   // The coarse level's solution is all this level takes from it: its factorisation (with those
   // of the levels below it, which it freed in turn) goes before this level factorises. Tilted
@@ -207,13 +197,38 @@ bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
   const bool failed_somewhere =
       whole_on_each_rank ? Utilities::MPI::max(int(!failure.empty()), mpi_communicator) != 0
                          : !failure.empty();
-  if (failed_somewhere)
+  coarse_level_failed = failed_somewhere;
+  if (failed_somewhere && !failure.empty() && reports_progress &&
+      (first_rank || whole_on_each_rank))
+    std::cerr << "Cavitation: the coarse start failed (" << failure
+              << "); starting from the full film instead" << std::endl;
+}
+
+bool ReynoldsSolver::coarse_level_state(std::vector<double> &pressure_at_dofs,
+                                        std::vector<double> &void_at_dofs)
+{
+  // The cavity boundary moves by about one cell per Newton (JFO) or active-set (Reynolds)
+  // iteration, so the iteration counts of a start from the full film grow with the mesh
+  // (JFOSolver::warm_start). On textured faces the sequencing stops at the coarsest level that
+  // still resolves the dimples, and never regenerates a gmsh mesh (AnnulusMesh::sequences_jfo).
+  // The coarse level may have been solved already, while this level's mesh was made
+  // (setup_while_coarse_levels_run).
+  std::vector<Point<2>> support = std::move(support_made_ahead);
+  support_made_ahead.clear();
+  if (!coarse_level_solved_ahead)
   {
-    if (!failure.empty() && reports_progress && (first_rank || whole_on_each_rank))
-      std::cerr << "Cavitation: the coarse start failed (" << failure
-                << "); starting from the full film instead" << std::endl;
-    return false; // fall back to the full-film start
+    const unsigned int next = current_coarsening + 1;
+    if (dof_handler.n_dofs() <= 200 || !mesh_parameters.can_coarsen(next) ||
+        !mesh_parameters.sequences_jfo(next, film.inner_radius, film.outer_radius))
+      return false;
+    solve_coarse_level(&support);
   }
+  coarse_level_solved_ahead = false;
+  if (coarse_level_failed)
+    return false; // fall back to the full-film start
+  const ReynoldsSolver &coarse = *coarse_solver;
+  const bool whole_on_each_rank = Utilities::MPI::n_mpi_processes(mpi_communicator) > 1 &&
+                                  settings.mesh.mesh_file.empty() && !(settings.mesh.mesh_size > 0);
   // the owned dofs' support points by owned index (owned_support_points: a std::map's 1.3e5
   // insertions were a quarter of the coarse start's time at 1.3e5 dofs)
   const unsigned int n_owned = locally_owned_dofs.n_elements();

@@ -35,6 +35,7 @@
 #include <cmath>
 #include <deque>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <map>
 #include <optional>
@@ -84,7 +85,7 @@ void ReynoldsSolver::parse_parameters(ParameterHandler &prm)
 void ReynoldsSolver::setup_system(const unsigned int coarsening)
 {
   TimerOutput::Scope t(timer, "setup");
-  if (setup_settings && settings.same_discretization(*setup_settings, coarsening, setup_coarsening))
+  if (same_mesh_as_set_up(coarsening))
   {
     // Same mesh and dofs: only the Dirichlet data (boundary pressures) may have changed. (The
     // matrix and right-hand side are made from zero by whoever fills them: assemble_system,
@@ -92,7 +93,19 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
     setup_constraints();
     return;
   }
-  LapTimer lap(setup_detail);
+  clear_for_new_mesh();
+  setup_mesh_and_dofs(coarsening, Utilities::MPI::n_mpi_processes(mpi_communicator));
+  setup_linear_algebra(coarsening);
+}
+
+bool ReynoldsSolver::same_mesh_as_set_up(const unsigned int coarsening) const
+{
+  return setup_settings &&
+         settings.same_discretization(*setup_settings, coarsening, setup_coarsening);
+}
+
+void ReynoldsSolver::clear_for_new_mesh()
+{
   dof_handler.clear();
   triangulation.clear();
   linear_system_solver.clear();
@@ -107,6 +120,13 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   mesh_parameters.grading_coning = film.coning;
   mesh_parameters.alignment =
       film.features ? film.features->mesh_alignment() : AnnulusMesh::Alignment();
+}
+
+void ReynoldsSolver::setup_mesh_and_dofs(const unsigned int coarsening, const unsigned int n_ranks)
+{
+  // (no MPI call on one rank with the built-in mesh: setup_while_coarse_levels_run runs this on
+  // a thread of its own)
+  LapTimer lap(setup_detail);
   mesh_parameters.create(triangulation, film.inner_radius, film.outer_radius, coarsening);
   lap("setup: mesh");
 
@@ -122,17 +142,15 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   dof_handler.distribute_dofs(*fe);
   lap("setup: dofs");
   // The geometric multigrid's line smoother wants the dofs numbered by radial lines.
-  if (FilmLinearSolver::choose(
-          linear_solver, true, dof_handler.n_dofs(),
-          mesh_parameters.mesh_file.empty() && FilmMultigrid::has_hierarchy(dof_handler),
-          Utilities::MPI::n_mpi_processes(mpi_communicator)) == FilmLinearSolver::Method::cg_gmg)
+  if (FilmLinearSolver::choose(linear_solver, true, dof_handler.n_dofs(),
+                               mesh_parameters.mesh_file.empty() &&
+                                   FilmMultigrid::has_hierarchy(dof_handler),
+                               n_ranks) == FilmLinearSolver::Method::cg_gmg)
     multigrid.number_by_radial_lines(dof_handler, *mapping);
   lap("setup: numbering by lines");
 
   locally_owned_dofs = dof_handler.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
-  locally_relevant_solution.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-  system_rhs.reinit(locally_owned_dofs, mpi_communicator);
 
   // Zero Dirichlet data: the constraints of every correction and perturbation (Newton steps of
   // the cavitation models, linearised solves of the coefficients).
@@ -151,6 +169,14 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
                                   {AnnulusMesh::outer_boundary});
 
   lap("setup: index sets, zero constraints, boundary dofs");
+}
+
+void ReynoldsSolver::setup_linear_algebra(const unsigned int coarsening)
+{
+  LapTimer lap(setup_detail);
+  locally_relevant_solution.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+  system_rhs.reinit(locally_owned_dofs, mpi_communicator);
+  lap("setup: vectors");
   // The constrained dofs are the same with any Dirichlet data: one sparsity pattern per mesh.
   // Dirichlet constraints only (no hanging nodes) and one owned range per rank
   // (CellSparsity::applies): the same pattern from the cells' dofs by local index, and the
@@ -182,6 +208,81 @@ void ReynoldsSolver::setup_system(const unsigned int coarsening)
   setup_settings = std::make_unique<FilmSettings>(settings);
   setup_coarsening = coarsening;
   ++setup_count;
+}
+
+void ReynoldsSolver::setup_while_coarse_levels_run(const unsigned int coarsening)
+{
+  const AnnulusMesh &m = mesh_parameters;
+  if (Utilities::MPI::n_mpi_processes(mpi_communicator) != 1 || !m.mesh_file.empty() ||
+      m.mesh_size > 0 || same_mesh_as_set_up(coarsening))
+  {
+    setup_system(coarsening);
+    return;
+  }
+  clear_for_new_mesh(); // (the grading and alignment that sequences_jfo reads)
+  // coarse_level_state's own test (more than 200 dofs) by the cells: a ring of nr x nt cells
+  // has more dofs than cells
+  const unsigned int next = coarsening + 1;
+  const unsigned long long cells =
+      coarsening <= m.global_refinements
+          ? (1ull << 2 * (m.global_refinements - coarsening)) * m.radial_cells *
+                m.circumferential_cells
+          : (m.radial_cells >> (coarsening - m.global_refinements)) *
+                static_cast<unsigned long long>(m.circumferential_cells >>
+                                                (coarsening - m.global_refinements));
+  if (cells <= 200 || !m.can_coarsen(next) ||
+      !m.sequences_jfo(next, film.inner_radius, film.outer_radius))
+  {
+    TimerOutput::Scope t(timer, "setup");
+    setup_mesh_and_dofs(coarsening, 1);
+    setup_linear_algebra(coarsening);
+    return;
+  }
+  // This level's mesh, mapping, dofs, zero constraints and the nested dissection of its node
+  // grid (from the cells' dofs: the matrix is made after) on a thread of their own, while this
+  // thread solves the coarse levels: those touch nothing of this level, and their MUMPS
+  // factorisations run on one core. The thread makes no MPI call (one rank, deal.II's serial
+  // mesh); the vectors and the matrix (Trilinos, MPI) are made here after it. Tilted seal, JFO
+  // at 1.05e6 dofs: the setup's 0.9-1.3 s -> (doc/performance.md "Session 40").
+  struct MadeAhead
+  {
+    std::vector<Point<2>> support;
+    std::vector<int> order;
+    bool ordered = false;
+  };
+  std::future<MadeAhead> made = std::async(
+      std::launch::async,
+      [this, coarsening]()
+      {
+        setup_mesh_and_dofs(coarsening, 1);
+        MadeAhead ahead;
+        ahead.support = owned_support_points();
+        // (factorize's wants_nested_dissection, whose other conditions hold here)
+        ahead.ordered =
+            !elimination_order_tried && dof_handler.n_dofs() >= SparseDirect::multifrontal_limit &&
+            FilmLinearSolver::choose(linear_solver, false, dof_handler.n_dofs(), false, 1) ==
+                FilmLinearSolver::Method::direct;
+        if (ahead.ordered)
+          ahead.order = polar_nested_dissection(ahead.support, polynomial_degree,
+                                                CellSparsity::active_cell_dofs(dof_handler),
+                                                fe->n_dofs_per_cell());
+        return ahead;
+      });
+  current_coarsening = coarsening;
+  solve_coarse_level(nullptr);
+  coarse_level_solved_ahead = true;
+  // (the stage's time is the wait for the thread and the linear algebra: what the setup costs
+  // the run)
+  TimerOutput::Scope t(timer, "setup");
+  MadeAhead ahead = made.get();
+  setup_linear_algebra(coarsening);
+  // the cells' order holds for a matrix of the cells' couplings (CellSparsity's pattern)
+  if (ahead.ordered && matrix_by_position)
+  {
+    linear_system_solver.set_elimination_order(std::move(ahead.order));
+    elimination_order_tried = true;
+  }
+  support_made_ahead = std::move(ahead.support);
 }
 
 void ReynoldsSolver::setup_constraints()
@@ -919,7 +1020,12 @@ FilmLoads ReynoldsSolver::run(const unsigned int coarsening)
   coarse_factorizations = coarse_krylov_iterations = coarse_workspace_retries = 0;
   jfo_newton_steps = jfo_active_set_rounds = jfo_band_rounds = jfo_low_rank_updates = 0;
   jfo_band_workspace_retries = 0;
-  setup_system(coarsening);
+  coarse_level_solved_ahead = false;
+  support_made_ahead.clear();
+  if (cavitation.model == Cavitation::jfo)
+    setup_while_coarse_levels_run(coarsening);
+  else
+    setup_system(coarsening);
   // The cavitation models (jfo, reynolds) start from their solution of the mesh twice as coarse
   // (mesh sequencing) and assemble and solve the full film only where that start is not
   // available (JFOSolver::warm_start, ReynoldsCavitationSolver::start); the right-hand side they

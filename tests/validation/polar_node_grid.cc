@@ -4,11 +4,13 @@
 // row (the mapping of degree k on the polar manifold maps the cell's support points, equally
 // spaced for k <= 2 and Gauss-Lobatto points from k = 3, along the circles); every entry of the
 // finite-element matrix couples two nodes of one cell, so polar_nested_dissection gives a
-// permutation. Points that are not such a grid are refused: a node turned by 0.3 of a column, a
-// node moved 0.3 of the way to the next row; so is a matrix with an entry between two nodes that
-// no cell holds.
+// permutation, and the cells' dofs alone give the same one (the order made before the matrix).
+// Points that are not such a grid are refused: a node turned by 0.3 of a column, a node moved
+// 0.3 of the way to the next row; so is a matrix with an entry between two nodes that no cell
+// holds, and a cell holding two such nodes.
 #include "../graded_annulus.h"
 
+#include <sealfe/film/cell_sparsity.h>
 #include <sealfe/film/polar_node_grid.h>
 
 #include <deal.II/base/quadrature.h>
@@ -96,6 +98,10 @@ TEST(PolarNodeGrid, DofsOfTheAnnulusAreItsNodeGrid)
       EXPECT_FALSE(eliminated[p - 1]);
       eliminated[p - 1] = true;
     }
+    // the same order from the cells' dofs (the pattern's couplings), before any matrix
+    const std::vector<unsigned int> cell_dofs = CellSparsity::active_cell_dofs(dofs.dof_handler);
+    const unsigned int per_cell = dofs.dof_handler.get_fe().n_dofs_per_cell();
+    EXPECT_EQ(polar_nested_dissection(support, degree, cell_dofs, per_cell), order);
 
     // Points that are not the grid, each refused by the quarter-spacing checks (the counts of
     // rows and columns kept): a node of a middle row turned by 0.3 of its column's spacing, or
@@ -126,6 +132,7 @@ TEST(PolarNodeGrid, DofsOfTheAnnulusAreItsNodeGrid)
     std::vector<unsigned int> refused_position;
     EXPECT_FALSE(polar_node_grid(turned, degree, refused, refused_position)) << "degree " << degree;
     EXPECT_TRUE(polar_nested_dissection(turned, degree, matrix).empty());
+    EXPECT_TRUE(polar_nested_dissection(turned, degree, cell_dofs, per_cell).empty());
     EXPECT_FALSE(polar_node_grid(moved, degree, refused, refused_position)) << "degree " << degree;
 
     // A matrix entry between two nodes that no cell holds (a middle node and the node half a
@@ -139,5 +146,12 @@ TEST(PolarNodeGrid, DofsOfTheAnnulusAreItsNodeGrid)
     coupled_matrix.reinit(complete_index_set(support.size()), complete_index_set(support.size()),
                           coupled, MPI_COMM_SELF);
     EXPECT_TRUE(polar_nested_dissection(support, degree, coupled_matrix).empty());
+    // and a cell whose dofs hold both (the last dof of a cell of the middle node replaced)
+    std::vector<unsigned int> far_cell = cell_dofs;
+    const std::size_t k = std::find(far_cell.begin(), far_cell.end(), dof) - far_cell.begin();
+    ASSERT_LT(k, far_cell.size());
+    far_cell[(k / per_cell) * per_cell + (k % per_cell == per_cell - 1 ? 0 : per_cell - 1)] =
+        opposite;
+    EXPECT_TRUE(polar_nested_dissection(support, degree, far_cell, per_cell).empty());
   }
 }

@@ -29,4 +29,14 @@ bool polar_node_grid(const std::vector<dealii::Point<2>> &support, unsigned int 
 std::vector<int> polar_nested_dissection(const std::vector<dealii::Point<2>> &support,
                                          unsigned int degree,
                                          const dealii::TrilinosWrappers::SparseMatrix &matrix);
+
+/// The same order for the pattern of a matrix assembled over cells whose dofs are `cell_dofs`
+/// (`dofs_per_cell` numbers per cell, CellSparsity::active_cell_dofs), before that matrix is
+/// made: empty where the dofs are not a polar grid or two dofs of a cell are not within one
+/// cell of it. Reads no matrix and makes no MPI call (ReynoldsSolver makes it on a thread while
+/// the coarse levels run).
+std::vector<int> polar_nested_dissection(const std::vector<dealii::Point<2>> &support,
+                                         unsigned int degree,
+                                         const std::vector<unsigned int> &cell_dofs,
+                                         unsigned int dofs_per_cell);
 } // namespace sealfe

@@ -229,6 +229,18 @@ private:
                                        const FieldSelection &fields, double frame_angle);
 
   void setup_system(const unsigned int coarsening);
+  /// setup_system's parts for a new mesh: the resets (and the mesh grading from the film),
+  /// the mesh, mapping, dofs and zero constraints (no MPI call on one rank with the built-in
+  /// mesh), and the vectors, matrix and constraints on them.
+  bool same_mesh_as_set_up(unsigned int coarsening) const;
+  void clear_for_new_mesh();
+  void setup_mesh_and_dofs(unsigned int coarsening, unsigned int n_ranks);
+  void setup_linear_algebra(unsigned int coarsening);
+  /// setup_system for the JFO: on one rank with the built-in mesh, a new mesh of more than 200
+  /// cells that has a coarse level, its mesh and dofs (and nested dissection) are made on a
+  /// thread of their own while the coarse level is solved (solve_coarse_level), which
+  /// coarse_level_state then takes; else setup_system.
+  void setup_while_coarse_levels_run(unsigned int coarsening);
   void setup_constraints();
   void assemble_system();
   /// Prepare the linear solver for system_matrix. `symmetric`: full film or its linearisation
@@ -293,6 +305,10 @@ private:
   /// void), and the coarse level's pressure_scale. False where there is no such level or it
   /// failed: the caller starts from the full film.
   bool coarse_level_state(std::vector<double> &pressure_at_dofs, std::vector<double> &void_at_dofs);
+  /// coarse_level_state's solve of the coarse level (sets coarse_level_failed). `support`: where
+  /// this level's owned support points go when they are made on a thread alongside (with its
+  /// nested dissection from system_matrix), or null when this level's mesh is still being made.
+  void solve_coarse_level(std::vector<dealii::Point<2>> *support);
   /// The coarse level's nodal pressure and void fraction at `points` when both meshes are the
   /// built-in polar grid and the coarse level is whole on this rank (one rank, or the coarse
   /// levels each rank solves by itself): cells found by (r, theta), no point search. Returns
@@ -318,6 +334,11 @@ private:
   /// Mesh sequencing of the cavitation models: the solver of the mesh twice as coarse (kept, so
   /// that its mesh is reused too).
   std::unique_ptr<ReynoldsSolver> coarse_solver;
+  /// The coarse level has been solved while this level's mesh was made (solve_coarse_level,
+  /// setup_while_coarse_levels_run), and whether it failed; the support points of this level's
+  /// owned dofs made on that thread (empty if not).
+  bool coarse_level_solved_ahead = false, coarse_level_failed = false;
+  std::vector<dealii::Point<2>> support_made_ahead;
   /// A mesh-sequencing level: its state only starts the finer mesh, so run() accepts the JFO
   /// active-set state of a band round without the global check and computes no loads (nor the
   /// factorisation of the linearised loads).
