@@ -243,7 +243,7 @@ void ReynoldsSolver::setup_while_coarse_levels_run(const unsigned int coarsening
   // thread solves the coarse levels: those touch nothing of this level, and their MUMPS
   // factorisations run on one core. The thread makes no MPI call (one rank, deal.II's serial
   // mesh); the vectors and the matrix (Trilinos, MPI) are made here after it. Tilted seal, JFO
-  // at 1.05e6 dofs: the setup's 0.9-1.3 s -> (doc/performance.md "Session 40").
+  // at 1.05e6 dofs: the setup stage 0.99-1.30 -> 0.18-0.20 s (doc/performance.md "Session 40").
   struct MadeAhead
   {
     std::vector<Point<2>> support;
