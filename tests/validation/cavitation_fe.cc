@@ -10,6 +10,7 @@
 //    Jacobian at the solution by their columns equals the cell loop's, with the same linearised
 //    loads (round-off bounds);
 //  - single-precision factors refined in double end on the double factors' solution;
+//  - a level whose coarse level fails starts from the full film and ends on the same solution;
 //  - JFO mesh convergence of force, moments and cavitated fraction (orders measured);
 //  - hard cases converge (or stop with a clear message): tilt eps = 0.95 and 0.99, 1e4 rad/s at
 //    10 kPa, waviness n = 1..12 up to 0.9 C0, and no supply (pi = po = p_cav) is refused.
@@ -25,6 +26,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -490,6 +492,51 @@ TEST(CavitationFE, CoarseLevelsFreeTheirFactorisationsAndRunAgainAlike)
   for (const ReynoldsSolver *level = coarse; level; level = level->coarse_level_solver())
     EXPECT_STREQ(level->linear_solver_statistics().direct_package(), ""); // freed again
   expect_same_jfo_solution(first, second, tolerance, film.outer_radius);
+}
+
+TEST(CavitationFE, JfoStartsFromTheFullFilmWhereACoarseLevelFails)
+{
+  // A level whose coarse level fails starts from the full film instead (coarse_level_state,
+  // JFOSolver::warm_start), also where that coarse level was solved while the level's mesh was
+  // made on another thread (setup_while_coarse_levels_run: one rank, more than 200 cells). The
+  // source hook adds nothing (h_t + 0) and throws at its first call, which the coarsest level
+  // makes (the levels run coarsest first): its parent, of 16 x 32 cells, takes the full-film
+  // start. Both runs end on the same discrete JFO solution: the loads to the Newton tolerance,
+  // the mass balance to 1e-8 (as above). The tilted Varney & Green seal, 64 x 128 cells.
+  FilmThickness film;
+  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  const OperatingConditions conditions;
+  const double tolerance = 1e-10;
+  FilmLoads l[2];
+  unsigned int throws[2];
+  for (const bool fail : {false, true})
+  {
+    std::atomic<unsigned int> calls{0}, thrown{0};
+    ReynoldsSolver solver(MPI_COMM_WORLD);
+    solver.source = [&, fail](const dealii::Point<2> &)
+    {
+      if (fail && calls++ == 0)
+      {
+        ++thrown;
+        throw std::runtime_error("the test's failing source");
+      }
+      return 0.0;
+    };
+    l[fail] = converged_jfo(film, conditions, 64, 128, tolerance, solver);
+    throws[fail] = thrown;
+    if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1)
+    {
+      // three coarse levels at least, the coarsest of them the failed one
+      const ReynoldsSolver *level = solver.coarse_level_solver();
+      unsigned int levels = 0;
+      for (; level; level = level->coarse_level_solver())
+        ++levels;
+      EXPECT_GE(levels, 3u);
+    }
+  }
+  EXPECT_EQ(throws[0], 0u);
+  EXPECT_EQ(throws[1], 1u);
+  expect_same_jfo_solution(l[0], l[1], tolerance, film.outer_radius);
 }
 
 TEST(CavitationFE, JfoOnSeveralRanksWithSharedFactorisationsIsTheSameSolution)

@@ -15,12 +15,17 @@
 //   models' (JFO, Reynolds), whose cell matrices are made in batches on the threads too, and
 //   whose loads are summed in chunks of 64 cells on the threads (32 chunks here). (OpenBLAS stays
 //   on one thread, the test main's: its threaded sums differ at round-off.)
+// - The batches (numerics::compute_in_batches_add_in_order) hand every item to `add` once, in
+//   order; an exception thrown while a batch computes reaches the caller, after the batches
+//   before it were added and before its own is (deal.II 9.4's Task<void>::join does not rethrow:
+//   a batch's exception had been lost, its results left as they were).
 #include "../line_matrices.h"
 
 #include <sealfe/film/film_settings.h>
 #include <sealfe/film/line_jacobi.h>
 #include <sealfe/film/line_stencil_matrix.h>
 #include <sealfe/film/reynolds_solver.h>
+#include <sealfe/numerics/ordered_batches.h>
 #include <sealfe/numerics/threaded_product.h>
 
 #include <deal.II/base/index_set.h>
@@ -37,6 +42,8 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace sealfe;
@@ -241,5 +248,46 @@ TEST(ThreadedKernels, CavitationLoadsSameBitsOnOneAndTwoThreads)
     EXPECT_GT(one.cavitated_fraction, 0.05); // a cavity: the nonlinear paths run
     expect_same_loads(one, two);
     EXPECT_EQ(one.cavitated_fraction, two.cavitated_fraction);
+  }
+}
+
+TEST(ThreadedKernels, BatchesAddEveryItemInOrderAndPassOnAnException)
+{
+  // 5 000 items in batches of 1 024 (five batches), each item's result its own index
+  const std::size_t n_items = 5000, batch_size = 1024;
+  for (const bool fail : {false, true})
+  {
+    std::array<std::vector<std::size_t>, 2> batches;
+    for (auto &batch : batches)
+      batch.assign(batch_size, 0);
+    std::vector<std::size_t> added;
+    auto compute = [fail](std::vector<std::size_t> &batch, const std::size_t first_item,
+                          const std::size_t begin, const std::size_t end)
+    {
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        if (fail && first_item + c == 3000)
+          throw std::runtime_error("item 3000");
+        batch[c] = first_item + c;
+      }
+    };
+    auto add =
+        [&added](const std::vector<std::size_t> &batch, const std::size_t, const std::size_t count)
+    { added.insert(added.end(), batch.begin(), batch.begin() + count); };
+    std::string message;
+    try
+    {
+      numerics::compute_in_batches_add_in_order(n_items, batch_size, batches, 32, compute, add);
+    }
+    catch (const std::exception &e)
+    {
+      message = e.what();
+    }
+    // without the exception every item once, in order; with it, the two batches before the
+    // third (items 2 048-3 071, which holds item 3 000) and nothing after
+    EXPECT_EQ(message, fail ? "item 3000" : "");
+    ASSERT_EQ(added.size(), fail ? 2 * batch_size : n_items);
+    for (std::size_t k = 0; k < added.size(); ++k)
+      ASSERT_EQ(added[k], k);
   }
 }

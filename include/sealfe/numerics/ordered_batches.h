@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <exception>
 #include <functional>
 
 namespace sealfe::numerics
@@ -39,10 +40,24 @@ void compute_in_batches_add_in_order(const std::size_t n_items, const std::size_
         grain);
   };
   dealii::Threads::Task<void> next; // the batch computed while the previous one is added
+  // What the running batch threw. deal.II 9.4's Task<void>::join() does not rethrow it (its
+  // TaskData::wait never calls the future's get() for void), so the batch keeps it here; one
+  // batch runs at a time, joined before the next starts.
+  std::exception_ptr batch_failure;
   auto start = [&](const std::size_t first_item, Batch &batch)
   {
-    next = dealii::Threads::new_task(std::function<void()>([&compute_batch, first_item, &batch]()
-                                                           { compute_batch(first_item, batch); }));
+    next = dealii::Threads::new_task(std::function<void()>(
+        [&compute_batch, first_item, &batch, &batch_failure]()
+        {
+          try
+          {
+            compute_batch(first_item, batch);
+          }
+          catch (...)
+          {
+            batch_failure = std::current_exception();
+          }
+        }));
   };
   try
   {
@@ -51,7 +66,9 @@ void compute_in_batches_add_in_order(const std::size_t n_items, const std::size_
     for (std::size_t first_item = 0, b = 0; first_item < n_items;
          first_item += batch_size, b = 1 - b)
     {
-      next.join(); // rethrows what the batch threw
+      next.join();
+      if (batch_failure)
+        std::rethrow_exception(batch_failure);
       if (first_item + batch_size < n_items)
         start(first_item + batch_size, batches[1 - b]);
       add(static_cast<const Batch &>(batches[b]), first_item,
