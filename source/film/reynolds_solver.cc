@@ -233,9 +233,7 @@ void ReynoldsSolver::setup_while_coarse_levels_run(const unsigned int coarsening
   if (cells <= 200 || !m.can_coarsen(next) ||
       !m.sequences_jfo(next, film.inner_radius, film.outer_radius))
   {
-    TimerOutput::Scope t(timer, "setup");
-    setup_mesh_and_dofs(coarsening, 1);
-    setup_linear_algebra(coarsening);
+    setup_system(coarsening); // (its clear_for_new_mesh finds the objects cleared)
     return;
   }
   // This level's mesh, mapping, dofs, zero constraints and the nested dissection of its node
@@ -243,7 +241,7 @@ void ReynoldsSolver::setup_while_coarse_levels_run(const unsigned int coarsening
   // thread solves the coarse levels: those touch nothing of this level, and their MUMPS
   // factorisations run on one core. The thread makes no MPI call (one rank, deal.II's serial
   // mesh); the vectors and the matrix (Trilinos, MPI) are made here after it. Tilted seal, JFO
-  // at 1.05e6 dofs: the setup stage 0.99-1.30 -> 0.18-0.20 s (doc/performance.md "Session 40").
+  // at 1.05e6 dofs: the setup stage 0.99-1.30 -> 0.17-0.30 s (doc/performance.md "Session 40").
   struct MadeAhead
   {
     std::vector<Point<2>> support;
@@ -268,8 +266,7 @@ void ReynoldsSolver::setup_while_coarse_levels_run(const unsigned int coarsening
                                                 fe->n_dofs_per_cell());
         return ahead;
       });
-  current_coarsening = coarsening;
-  solve_coarse_level(nullptr);
+  solve_coarse_level(nullptr); // (run() has set current_coarsening)
   coarse_level_solved_ahead = true;
   // (the stage's time is the wait for the thread and the linear algebra: what the setup costs
   // the run)

@@ -51,6 +51,14 @@ FilmLoads solve(const FilmThickness &film, const OperatingConditions &conditions
   return s.run(film, conditions);
 }
 
+/// The tilted Varney & Green seal of the speed benchmark: tilt eps = 0.5 (0.5 C0 at ro)
+FilmThickness tilted_seal()
+{
+  FilmThickness film;
+  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  return film;
+}
+
 /// A JFO run to the Newton tolerance `tolerance` on `solver`, which must converge and balance
 /// its leakages to 1e-8 (as JfoConservesMassThroughEveryCircle)
 FilmLoads converged_jfo(const FilmThickness &film, const OperatingConditions &conditions,
@@ -394,8 +402,7 @@ TEST(CavitationFE, JfoWithSinglePrecisionFactorsIsTheDoubleSolution)
   // backward error, so the rounds solve the same linear systems to round-off and end on the same
   // set: the loads agree to the Newton tolerance and the mass balance holds (1e-8). The tilted
   // seal at 33 024 dofs (MUMPS) with the limit lowered below its size, against the limit above.
-  FilmThickness film;
-  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  FilmThickness film = tilted_seal();
   const OperatingConditions conditions;
   const double tolerance = 1e-10;
   const long long limit = SparseDirect::single_precision_limit;
@@ -429,8 +436,7 @@ TEST(CavitationFE, JfoBandStartGivesTheGlobalRoundsSolution)
   // the loads agree to the Newton tolerance and the mass balance holds (1e-8, as above). The
   // tilted Varney & Green seal (eps = 0.5, the speed benchmark's case; 33 024 dofs, MUMPS) takes
   // the band start on every level; the counts are printed (measured: 2 -> 1 factorisations).
-  FilmThickness film;
-  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  FilmThickness film = tilted_seal();
   const OperatingConditions conditions;
   const double tolerance = 1e-10;
   FilmLoads l[2];
@@ -468,8 +474,7 @@ TEST(CavitationFE, CoarseLevelsFreeTheirFactorisationsAndRunAgainAlike)
   // solver then analyses the coarse patterns again and must end on the same discrete solution:
   // the loads to the Newton tolerance, the mass balance to 1e-8 (as above). The tilted Varney &
   // Green seal at 33 024 dofs (MUMPS on the finest level, KLU below).
-  FilmThickness film;
-  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  FilmThickness film = tilted_seal();
   const OperatingConditions conditions;
   const double tolerance = 1e-10;
   ReynoldsSolver solver(MPI_COMM_WORLD);
@@ -503,8 +508,7 @@ TEST(CavitationFE, JfoStartsFromTheFullFilmWhereACoarseLevelFails)
   // makes (the levels run coarsest first): its parent, of 16 x 32 cells, takes the full-film
   // start. Both runs end on the same discrete JFO solution: the loads to the Newton tolerance,
   // the mass balance to 1e-8 (as above). The tilted Varney & Green seal, 64 x 128 cells.
-  FilmThickness film;
-  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  FilmThickness film = tilted_seal();
   const OperatingConditions conditions;
   const double tolerance = 1e-10;
   FilmLoads l[2];
@@ -551,8 +555,7 @@ TEST(CavitationFE, JfoOnSeveralRanksWithSharedFactorisationsIsTheSameSolution)
   // (ctest cavitation_fe_on_2_ranks, _3_)
   if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) < 2)
     GTEST_SKIP() << "needs two ranks or more (ctest cavitation_fe_on_{2,3}_ranks)";
-  FilmThickness film;
-  film.tilt = 0.5 * film.clearance / film.outer_radius;
+  FilmThickness film = tilted_seal();
   const OperatingConditions conditions;
   const double tolerance = 1e-10;
   const long long limit = SparseDirect::substructured_limit;
